@@ -1,0 +1,19 @@
+#include "common/particles.hpp"
+
+namespace duet {
+
+void Particles::resize(std::size_t n) {
+  position.resize(n, Vec2::Zero());
+  velocity.resize(n, Vec2::Zero());
+  displacement.resize(n, Vec2::Zero());
+  mass.resize(n, 0.0);
+  volume.resize(n, 0.0);
+  density.resize(n, 0.0);
+  stress.resize(n, Mat3::Zero());
+  strain.resize(n, Mat3::Zero());
+  body.resize(n, -1);
+  material.resize(n, -1);
+  internal.values.resize(n * internal.names.size(), 0.0);
+}
+
+}  // namespace duet

@@ -1,0 +1,51 @@
+#pragma once
+// Models chosen by name. register_builtin_models() is called from one place (no static
+// self-registration: the linker drops it from static libraries). Adding a model is one new file
+// plus one line in registry.cpp.
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "constitutive/model.hpp"
+#include "constitutive/parameters.hpp"
+
+namespace duet::constitutive {
+
+/// Builds a model from its parameters; throws InputError on bad values. Must call
+/// parameters.finish() so unknown keys are refused.
+using ModelFactory = std::function<std::unique_ptr<Model>(Parameters&)>;
+
+struct ModelInfo {
+  std::string name;
+  std::string summary;                           // one line, for listings
+  ModelFactory make;
+  std::map<std::string, ParameterValue> example; // a valid parameter set (the demo uses it)
+};
+
+class ModelRegistry {
+ public:
+  void add(ModelInfo info);
+  /// Throws InputError naming the known models (with a did-you-mean) when `name` is unknown.
+  const ModelInfo& find(const std::string& name, const std::string& context = "model") const;
+  std::vector<std::string> names() const;
+  const std::vector<ModelInfo>& models() const { return models_; }
+
+ private:
+  std::vector<ModelInfo> models_;
+};
+
+void register_builtin_models(ModelRegistry& registry);
+
+/// The registry with every built-in model.
+const ModelRegistry& builtin_models();
+
+/// Convenience: find by name, build from values, check unknown keys. `context` prefixes messages.
+std::unique_ptr<Model> make_model(const std::string& name,
+                                  std::map<std::string, ParameterValue> values,
+                                  const std::string& context,
+                                  std::map<std::string, ParameterValue>* resolved = nullptr);
+
+}  // namespace duet::constitutive
