@@ -26,16 +26,16 @@ struct InternalVariables {
 
 struct Particles {
   // Geometry and kinematics (plane, x horizontal, y vertical upward).
-  std::vector<Vec2> position;        // m
-  std::vector<Vec2> velocity;        // m/s
-  std::vector<Vec2> displacement;    // m, from the initial position
+  std::vector<Vec2> position;      // m
+  std::vector<Vec2> velocity;      // m/s
+  std::vector<Vec2> displacement;  // m, from the initial position
   // Mass and volume (per unit thickness in plane strain).
-  std::vector<double> mass;          // kg/m
-  std::vector<double> volume;        // m^2
-  std::vector<double> density;       // kg/m^3
+  std::vector<double> mass;     // kg/m
+  std::vector<double> volume;   // m^2
+  std::vector<double> density;  // kg/m^3
   // Mechanics.
-  std::vector<Mat3> stress;          // Pa, tension positive
-  std::vector<Mat3> strain;          // accumulated (small-strain sum of increments), -
+  std::vector<Mat3> stress;  // Pa, tension positive
+  std::vector<Mat3> strain;  // accumulated (small-strain sum of increments), -
   // Which body and which material each particle came from (indices into the scene's lists).
   std::vector<std::int32_t> body;
   std::vector<std::int32_t> material;

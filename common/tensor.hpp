@@ -1,8 +1,8 @@
 #pragma once
 // Tensor helpers on Eigen and the stress invariants used everywhere (one place, one test).
-// Convention: tension positive (as the papers), stress is a full symmetric 3x3 even in plane strain.
-// Voigt order for 6-vectors: (xx, yy, zz, xy, yz, zx); strain 6-vectors carry engineering shear
-// (gamma_xy = 2 eps_xy), stress 6-vectors carry the plain components.
+// Convention: tension positive (as the papers), stress is a full symmetric 3x3 even in plane
+// strain. Voigt order for 6-vectors: (xx, yy, zz, xy, yz, zx); strain 6-vectors carry engineering
+// shear (gamma_xy = 2 eps_xy), stress 6-vectors carry the plain components.
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -17,18 +17,28 @@ using Mat3 = Eigen::Matrix3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-inline Mat3 identity3() { return Mat3::Identity(); }
+inline Mat3 identity3() {
+  return Mat3::Identity();
+}
 
-inline Mat3 deviator(const Mat3& a) { return a - a.trace() / 3.0 * Mat3::Identity(); }
+inline Mat3 deviator(const Mat3& a) {
+  return a - a.trace() / 3.0 * Mat3::Identity();
+}
 
 /// Double contraction a : b.
-inline double contract(const Mat3& a, const Mat3& b) { return (a.array() * b.array()).sum(); }
+inline double contract(const Mat3& a, const Mat3& b) {
+  return (a.array() * b.array()).sum();
+}
 
 /// Euclidean (Frobenius) norm sqrt(a : a).
-inline double norm(const Mat3& a) { return std::sqrt(contract(a, a)); }
+inline double norm(const Mat3& a) {
+  return std::sqrt(contract(a, a));
+}
 
 /// Mean stress p = tr(sigma)/3 (tension positive: negative in compression).
-inline double mean_stress(const Mat3& s) { return s.trace() / 3.0; }
+inline double mean_stress(const Mat3& s) {
+  return s.trace() / 3.0;
+}
 
 /// Second invariant of the deviator J2 = s:s/2.
 inline double j2(const Mat3& s) {
@@ -37,10 +47,14 @@ inline double j2(const Mat3& s) {
 }
 
 /// Third invariant of the deviator J3 = det(s).
-inline double j3(const Mat3& s) { return deviator(s).determinant(); }
+inline double j3(const Mat3& s) {
+  return deviator(s).determinant();
+}
 
 /// Von Mises equivalent stress q = sqrt(3 J2).
-inline double von_mises(const Mat3& s) { return std::sqrt(3.0 * j2(s)); }
+inline double von_mises(const Mat3& s) {
+  return std::sqrt(3.0 * j2(s));
+}
 
 /// Lode angle theta in [-pi/6, pi/6] from sin(3 theta) = -(3 sqrt3 / 2) J3 / J2^(3/2).
 /// theta = +pi/6 on triaxial compression (tension-positive stress), -pi/6 on triaxial extension.
@@ -53,8 +67,12 @@ inline double lode_angle(const Mat3& s) {
   return std::asin(x) / 3.0;
 }
 
-inline Mat3 sym(const Mat3& a) { return 0.5 * (a + a.transpose()); }
-inline Mat3 skew(const Mat3& a) { return 0.5 * (a - a.transpose()); }
+inline Mat3 sym(const Mat3& a) {
+  return 0.5 * (a + a.transpose());
+}
+inline Mat3 skew(const Mat3& a) {
+  return 0.5 * (a - a.transpose());
+}
 
 /// Strain tensor -> Voigt 6-vector with engineering shear.
 inline Vec6 strain_to_voigt(const Mat3& e) {

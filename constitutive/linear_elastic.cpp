@@ -5,8 +5,7 @@ namespace duet::constitutive {
 ElasticParameters ElasticParameters::read(Parameters& parameters) {
   ElasticParameters e;
   e.youngs_modulus = parameters.require("E", Range::positive(), "Pa", "Young's modulus");
-  e.poisson_ratio =
-      parameters.require("nu", Range::closed_open(0.0, 0.5), "-", "Poisson's ratio");
+  e.poisson_ratio = parameters.require("nu", Range::closed_open(0.0, 0.5), "-", "Poisson's ratio");
   return e;
 }
 
@@ -43,7 +42,8 @@ ElasticModuli LinearElastic::moduli(const Mat3&, std::span<const double>) const 
 }
 
 void register_linear_elastic(ModelRegistry& registry) {
-  registry.add({"linear-elastic", "isotropic linear elasticity (E, nu)",
+  registry.add({"linear-elastic",
+                "isotropic linear elasticity (E, nu)",
                 [](Parameters& p) -> std::unique_ptr<Model> {
                   return std::make_unique<LinearElastic>(ElasticParameters::read(p));
                 },

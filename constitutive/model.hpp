@@ -1,7 +1,7 @@
 #pragma once
 // The interface every soil model implements. A model maps (old state, strain increment) to a new
-// state and, when asked, a tangent. It sees no particle, no mesh, no solver: SPH, explicit SPFEM and
-// implicit SPFEM call the very same functions.
+// state and, when asked, a tangent. It sees no particle, no mesh, no solver: SPH, explicit SPFEM
+// and implicit SPFEM call the very same functions.
 //
 // Conventions: tension positive (compression negative, as in the papers); stress is a full
 // symmetric 3x3 (plane strain keeps sigma_zz); velocity gradient L_ij = dv_i/dx_j, stretching
@@ -19,9 +19,9 @@ namespace duet::constitutive {
 
 /// One internal variable a model keeps per material point (stored as a double; counters too).
 struct InternalVariable {
-  std::string name;     // "void_ratio", "plastic_strain", "corrections", ...
-  double initial = 0.0; // value at the start of a run (may come from the parameters, e.g. e0)
-  std::string unit;     // "-" when dimensionless
+  std::string name;      // "void_ratio", "plastic_strain", "corrections", ...
+  double initial = 0.0;  // value at the start of a run (may come from the parameters, e.g. e0)
+  std::string unit;      // "-" when dimensionless
 };
 
 /// Elastic moduli at the current state, for time steps and sound speeds.

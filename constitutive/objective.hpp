@@ -4,7 +4,8 @@
 // Incremental form: the stress is first rotated by the spin increment with the Hughes-Winget
 // rotation R = (I - dW/2)^-1 (I + dW/2), which is exactly orthogonal, so a rigid rotation leaves
 // every invariant unchanged to round-off; then the model integrates the co-rotational increment.
-// Rate form: d(sigma)/dt = objective_rate(D) + W sigma - sigma W (eq 13 solved for the material rate).
+// Rate form: d(sigma)/dt = objective_rate(D) + W sigma - sigma W (eq 13 solved for the material
+// rate).
 
 #include <span>
 

@@ -92,8 +92,8 @@ std::string Parameters::choice(std::string_view name, const std::vector<std::str
       return c;
     }
   }
-  throw InputError(key(name) + " = \"" + given + "\": " + std::string(meaning) + " must be one of " +
-                   join(choices) + did_you_mean(given, choices));
+  throw InputError(key(name) + " = \"" + given + "\": " + std::string(meaning) +
+                   " must be one of " + join(choices) + did_you_mean(given, choices));
 }
 
 void Parameters::record(std::string_view name, double value) {

@@ -1,12 +1,14 @@
 #include "constitutive/registry.hpp"
 
 #include "common/input_error.hpp"
-#include "constitutive/linear_elastic.hpp"
 #include "common/suggest.hpp"
+#include "constitutive/linear_elastic.hpp"
 
 namespace duet::constitutive {
 
-void ModelRegistry::add(ModelInfo info) { models_.push_back(std::move(info)); }
+void ModelRegistry::add(ModelInfo info) {
+  models_.push_back(std::move(info));
+}
 
 const ModelInfo& ModelRegistry::find(const std::string& name, const std::string& context) const {
   for (const auto& m : models_) {

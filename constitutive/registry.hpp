@@ -20,9 +20,9 @@ using ModelFactory = std::function<std::unique_ptr<Model>(Parameters&)>;
 
 struct ModelInfo {
   std::string name;
-  std::string summary;                           // one line, for listings
+  std::string summary;  // one line, for listings
   ModelFactory make;
-  std::map<std::string, ParameterValue> example; // a valid parameter set (the demo uses it)
+  std::map<std::string, ParameterValue> example;  // a valid parameter set (the demo uses it)
 };
 
 class ModelRegistry {
