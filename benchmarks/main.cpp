@@ -1,7 +1,34 @@
-// The duet command line program: run, compare, stability, element, demo. It holds no physics.
-#include <cstdio>
+// The duet command line program. It holds no physics: each subcommand lives in its own file.
+// Exit status: 0 success, 1 internal error, 2 bad input, 3 a run that failed numerically.
 
-int main() {
-  std::puts("duet: command line under construction");
-  return 0;
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "benchmarks/commands.hpp"
+#include "benchmarks/element_command.hpp"
+#include "common/input_error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "duet: run one geomechanics scene through SPH and SPFEM and score accuracy against cost"};
+  app.require_subcommand(1);
+  int exit_code = 0;
+  duet::add_run_command(app, exit_code);
+  duet::add_compare_command(app, exit_code);
+  duet::add_stability_command(app, exit_code);
+  duet::add_element_command(app, exit_code);
+  duet::add_demo_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int status = app.exit(e);
+    return status == 0 ? 0 : 2;
+  } catch (const duet::InputError& e) {
+    std::cerr << "duet: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "duet: error: " << e.what() << '\n';
+    return 1;
+  }
+  return exit_code;
 }

@@ -13,7 +13,7 @@ void Particles::resize(std::size_t n) {
   strain.resize(n, Mat3::Zero());
   body.resize(n, -1);
   material.resize(n, -1);
-  internal.values.resize(n * internal.names.size(), 0.0);
+  internal.values.resize(n * internal.width, 0.0);
 }
 
 }  // namespace duet

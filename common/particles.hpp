@@ -3,6 +3,7 @@
 // SI units; tension positive; stress is a full 3x3 even in plane strain (sigma_zz kept).
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -12,16 +13,32 @@
 
 namespace duet {
 
-/// The model internal variables of all particles: n_variables values per particle, row-major
-/// (particle i's values are values[i * names.size() + k]). Names and meaning are declared by the
-/// constitutive model of the particle's material; particles of different materials may use fewer.
+/// The model internal variables of all particles. Each particle owns a block of `width` doubles;
+/// the constitutive model of its material reads and writes the first entries of that block, in the
+/// order the model declares them. `names` is the union over the scene's models (for output), and
+/// slot[material][k] says where name k sits in a block of that material (-1: that model lacks it).
 struct InternalVariables {
-  std::vector<std::string> names;  // union over the scene's models, in storage order
-  std::vector<double> values;
+  std::vector<std::string> names;
+  std::vector<std::vector<int>> slot;  // [material][name index] -> position in the block, or -1
+  std::size_t width = 0;
+  std::vector<double> values;  // n_particles * width
 
   std::size_t n_variables() const { return names.size(); }
-  double* of(std::size_t particle) { return values.data() + particle * names.size(); }
-  const double* of(std::size_t particle) const { return values.data() + particle * names.size(); }
+  double* of(std::size_t particle) { return values.data() + particle * width; }
+  const double* of(std::size_t particle) const { return values.data() + particle * width; }
+  /// Value of variable `name_index` for `particle` of material `material`; NaN where that
+  /// material's model has no such variable.
+  double value(std::size_t particle, int material, std::size_t name_index) const {
+    const int k = slot[static_cast<std::size_t>(material)][name_index];
+    return k < 0 ? std::numeric_limits<double>::quiet_NaN() : of(particle)[k];
+  }
+  /// Index of `name` in names, or -1.
+  int index_of(const std::string& name) const {
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      if (names[k] == name) return static_cast<int>(k);
+    }
+    return -1;
+  }
 };
 
 struct Particles {

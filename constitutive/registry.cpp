@@ -2,7 +2,12 @@
 
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
+#include "constitutive/drucker_prager.hpp"
+#include "constitutive/hypoplastic.hpp"
 #include "constitutive/linear_elastic.hpp"
+#include "constitutive/mohr_coulomb.hpp"
+#include "constitutive/simhypo_sand.hpp"
+#include "constitutive/tresca.hpp"
 
 namespace duet::constitutive {
 
@@ -27,6 +32,11 @@ std::vector<std::string> ModelRegistry::names() const {
 void register_builtin_models(ModelRegistry& registry) {
   // One line per model file (each file defines its own register_* function).
   register_linear_elastic(registry);
+  register_hypoplastic(registry);
+  register_drucker_prager(registry);
+  register_tresca(registry);
+  register_mohr_coulomb(registry);
+  register_simhypo_sand(registry);
 }
 
 const ModelRegistry& builtin_models() {

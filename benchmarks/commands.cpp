@@ -1,0 +1,255 @@
+#include "benchmarks/commands.hpp"
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "benchmarks/driver.hpp"
+#include "benchmarks/element_demo.hpp"
+#include "benchmarks/methods.hpp"
+#include "benchmarks/plotting.hpp"
+#include "benchmarks/reports.hpp"
+#include "common/input_error.hpp"
+#include "common/scene_loader.hpp"
+#include "common/suggest.hpp"
+
+namespace duet {
+
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  for (char c : text) {
+    if (c == separator) {
+      parts.push_back(part);
+      part.clear();
+    } else {
+      part += c;
+    }
+  }
+  parts.push_back(part);
+  return parts;
+}
+
+std::vector<double> parse_spacings(const std::string& text) {
+  std::vector<double> spacings;
+  for (const auto& word : split(text, ',')) {
+    try {
+      std::size_t used = 0;
+      const double v = std::stod(word, &used);
+      if (used != word.size() || !(v > 0.0)) throw std::invalid_argument(word);
+      spacings.push_back(v);
+    } catch (const std::exception&) {
+      throw InputError("--spacings " + text + ": '" + word +
+                       "' is not a positive number (particle spacing, m)");
+    }
+  }
+  return spacings;
+}
+
+std::vector<std::string> with_spacing(std::vector<std::string> overrides, double spacing) {
+  overrides.push_back("spacing=" + format_number(spacing));
+  return overrides;
+}
+
+void plot(const std::string& script, const std::vector<std::string>& arguments) {
+  std::string why;
+  if (!run_plot_script(script, arguments, &why)) std::cerr << "duet: chart skipped: " << why << '\n';
+}
+
+struct RunArgs {
+  std::string scene;
+  std::string method;
+  double spacing = 0.0;
+  std::vector<std::string> sets;
+  std::string out;
+  bool quiet = false;
+};
+
+}  // namespace
+
+void add_run_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<RunArgs>();
+  CLI::App* cmd = app.add_subcommand("run", "run one scene through one method");
+  cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
+  cmd->add_option("--method", args->method, "sph | espfem | ispfem")->required();
+  cmd->add_option("--spacing", args->spacing, "particle spacing dp (m), overrides the scene's");
+  cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
+  cmd->add_option("--out", args->out, "output folder (default runs/<scene>-<method>-dp<spacing>)");
+  cmd->add_flag("--quiet", args->quiet, "no progress display");
+  cmd->callback([args, &exit_code] {
+    std::vector<std::string> overrides = args->sets;
+    if (args->spacing != 0.0) overrides = with_spacing(overrides, args->spacing);
+    const Scene scene = load_scene(args->scene, overrides);
+    const MethodInfo& method = builtin_methods().find(args->method);
+    RunOptions options;
+    options.out_dir = args->out.empty() ? default_run_dir(scene, method.name) : args->out;
+    options.show_progress = !args->quiet;
+    const RunSummary summary = run_scene(scene, method, options);
+    std::cout << compare_markdown({summary}, 0.0) << "results: " << options.out_dir << '\n';
+    exit_code = summary.completed() ? 0 : 3;
+  });
+}
+
+namespace {
+
+struct CompareArgs {
+  std::string scene;
+  std::string methods;
+  std::string spacings;
+  double target = 0.0;
+  std::vector<std::string> sets;
+  std::string out;
+};
+
+}  // namespace
+
+void add_compare_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd =
+      app.add_subcommand("compare", "run a scene through several methods and spacings");
+  cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
+  cmd->add_option("--methods", args->methods, "comma-separated (default: every registered one)");
+  cmd->add_option("--spacings", args->spacings, "comma-separated spacings (default: the scene's)");
+  cmd->add_option("--target", args->target,
+                  "report per method the coarsest spacing whose errors are all below this");
+  cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
+  cmd->add_option("--out", args->out, "output folder (default runs/compare-<scene>)");
+  cmd->callback([args, &exit_code] {
+    // Everything is checked before any run starts.
+    const Scene base = load_scene(args->scene, args->sets);
+    const std::vector<double> spacings =
+        args->spacings.empty() ? std::vector<double>{base.spacing} : parse_spacings(args->spacings);
+    std::vector<std::string> method_names =
+        args->methods.empty() ? builtin_methods().names() : split(args->methods, ',');
+    if (method_names.empty()) builtin_methods().find("sph");  // throws: nothing registered
+    std::vector<const MethodInfo*> methods;
+    for (const auto& name : method_names) methods.push_back(&builtin_methods().find(name));
+    std::vector<Scene> scenes;
+    for (double dp : spacings) scenes.push_back(load_scene(args->scene, with_spacing(args->sets, dp)));
+    if (args->target < 0.0) throw InputError("--target must be positive (relative error, e.g. 0.05)");
+
+    const std::string out = args->out.empty() ? "runs/compare-" + base.name : args->out;
+    std::filesystem::create_directories(out);
+    std::vector<RunSummary> runs;
+    for (const MethodInfo* method : methods) {
+      for (const Scene& scene : scenes) {
+        RunOptions options;
+        options.out_dir = out + "/" + method->name + "-dp" + format_number(scene.spacing);
+        std::cerr << "duet: " << method->name << " at spacing " << scene.spacing << " m\n";
+        runs.push_back(run_scene(scene, *method, options));
+      }
+    }
+    write_compare_csv(out + "/compare.csv", runs);
+    write_compare_markdown(out + "/compare.md", runs, args->target);
+    plot("compare.py", {out + "/compare.csv", out + "/compare.png", base.name});
+    std::cout << compare_markdown(runs, args->target) << "results: " << out << '\n';
+    exit_code = 0;
+  });
+}
+
+namespace {
+
+struct StabilityArgs {
+  std::string scene;
+  std::string method;
+  std::vector<std::string> vary;
+  std::vector<std::string> sets;
+  std::string out;
+};
+
+/// Cartesian product of the varied keys' values.
+std::vector<std::vector<std::pair<std::string, std::string>>> grid_of(
+    const std::vector<std::string>& vary) {
+  std::vector<std::vector<std::pair<std::string, std::string>>> grid{{}};
+  for (const auto& spec : vary) {
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size()) {
+      throw InputError("--vary " + spec + ": expected key=v1,v2,... (e.g. sph.cfl=0.05,0.1,0.2)");
+    }
+    const std::string key = spec.substr(0, eq);
+    std::vector<std::vector<std::pair<std::string, std::string>>> next;
+    for (const auto& cell : grid) {
+      for (const auto& value : split(spec.substr(eq + 1), ',')) {
+        auto extended = cell;
+        extended.emplace_back(key, value);
+        next.push_back(extended);
+      }
+    }
+    grid = next;
+  }
+  return grid;
+}
+
+}  // namespace
+
+void add_stability_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<StabilityArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "stability", "map where a method stays stable over a grid of scene or method settings");
+  cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
+  cmd->add_option("--method", args->method, "sph | espfem | ispfem")->required();
+  cmd->add_option("--vary", args->vary, "key=v1,v2,... (repeatable; the grid is their product)")
+      ->required();
+  cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
+  cmd->add_option("--out", args->out, "output folder (default runs/stability-<scene>-<method>)");
+  cmd->callback([args, &exit_code] {
+    const MethodInfo& method = builtin_methods().find(args->method);
+    const auto grid = grid_of(args->vary);
+    std::vector<Scene> scenes;  // every cell validated before any run
+    for (const auto& cell : grid) {
+      std::vector<std::string> overrides = args->sets;
+      for (const auto& [key, value] : cell) overrides.push_back(key + "=" + value);
+      scenes.push_back(load_scene(args->scene, overrides));
+    }
+    const std::string out =
+        args->out.empty() ? "runs/stability-" + scenes.front().name + "-" + method.name : args->out;
+    std::filesystem::create_directories(out);
+    std::vector<StabilityCell> cells;
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      std::string name;
+      for (const auto& [key, value] : grid[i]) name += (name.empty() ? "" : "_") + key + "=" + value;
+      RunOptions options;
+      options.out_dir = out + "/" + name;
+      std::cerr << "duet: stability cell " << name << '\n';
+      cells.push_back({grid[i], run_scene(scenes[i], method, options)});
+    }
+    write_stability_csv(out + "/stability.csv", cells);
+    plot("stability.py", {out + "/stability.csv", out + "/stability.png",
+                          scenes.front().name + " (" + method.name + ")"});
+    std::cout << "results: " << out << '\n';
+    exit_code = 0;
+  });
+}
+
+void add_demo_command(CLI::App& app, int& exit_code) {
+  auto out = std::make_shared<std::string>("runs/demo");
+  CLI::App* cmd = app.add_subcommand(
+      "demo", "the default demonstration: the coarse collapse comparison once a solver is "
+              "registered, else the element tests of every soil model");
+  cmd->add_option("--out", *out, "output folder (default runs/demo)");
+  cmd->callback([out, &exit_code] {
+    if (builtin_methods().empty()) {
+      std::cout << "No solver is registered in this build yet: running the element tests of "
+                   "every soil model.\n";
+      exit_code = run_element_demo(*out);
+      return;
+    }
+    const std::string scene_path = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
+    const Scene scene = load_scene(scene_path, {"spacing=0.005"});
+    std::vector<RunSummary> runs;
+    for (const auto& name : builtin_methods().names()) {
+      RunOptions options;
+      options.out_dir = *out + "/" + name;
+      runs.push_back(run_scene(scene, builtin_methods().find(name), options));
+    }
+    write_compare_csv(*out + "/compare.csv", runs);
+    write_compare_markdown(*out + "/compare.md", runs, 0.0);
+    plot("compare.py", {*out + "/compare.csv", *out + "/compare.png", scene.name});
+    std::cout << compare_markdown(runs, 0.0) << "results: " << *out << '\n';
+    exit_code = 0;
+  });
+}
+
+}  // namespace duet

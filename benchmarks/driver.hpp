@@ -1,0 +1,28 @@
+#pragma once
+// The driver owns the loop, the output and failure handling for every method: it samples the
+// particles, sets the material points' initial state, steps the solver to the end time, writes
+// frames (run.h5 + run.xdmf), samples the scene's measures, scores them against the references,
+// and writes metrics.json. A run that fails numerically stops cleanly with status "failed", its
+// reason, time and particle, and every frame written so far.
+
+#include <string>
+
+#include "benchmarks/run_summary.hpp"
+#include "common/scene.hpp"
+#include "common/solver.hpp"
+
+namespace duet {
+
+struct RunOptions {
+  std::string out_dir;
+  bool show_progress = true;
+};
+
+/// Runs `scene` through `method`; never throws for numerical failure (it is reported in the
+/// summary and metrics.json). Throws InputError for bad input discovered while setting up.
+RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOptions& options);
+
+/// Default output folder for a run: runs/<scene>-<method>-dp<spacing>.
+std::string default_run_dir(const Scene& scene, const std::string& method);
+
+}  // namespace duet

@@ -1,0 +1,29 @@
+#pragma once
+// The initial state of the material points, the same for every method: each particle's internal
+// variables from its material's model, and the geostatic stress when the scene asks for it.
+
+#include <memory>
+#include <vector>
+
+#include "common/particles.hpp"
+#include "common/scene.hpp"
+#include "constitutive/model.hpp"
+
+namespace duet {
+
+/// One model per scene material, in the scene's material order.
+std::vector<std::unique_ptr<constitutive::Model>> build_models(const Scene& scene);
+
+/// Lays out particles.internal for the scene's models and sets every particle's internal
+/// variables to its model's initial values.
+void initialise_internal_variables(const std::vector<std::unique_ptr<constitutive::Model>>& models,
+                                   Particles& particles);
+
+/// Geostatic stress (K0 procedure): sigma_yy = -rho |g| (surface - y) with the surface the top
+/// of the particle's lattice column in its body, sigma_xx = sigma_zz = K0 sigma_yy.
+void apply_geostatic_stress(const Scene& scene, double K0, Particles& particles);
+
+/// build_models + initialise_internal_variables + the scene's initial stress.
+void initialise_material_points(const Scene& scene, Particles& particles);
+
+}  // namespace duet

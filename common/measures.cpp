@@ -1,0 +1,247 @@
+#include "common/measures.hpp"
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "common/geometry.hpp"
+
+namespace duet {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double component_of(const Vec2& v, const std::string& component) {
+  if (component == "x") return v.x();
+  if (component == "y") return v.y();
+  return v.norm();
+}
+
+int body_index(const Scene& scene, const std::string& name) {
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    if (scene.bodies[b].name == name) return static_cast<int>(b);
+  }
+  return -1;
+}
+
+Vec2 reaction_of(const std::vector<Reaction>& reactions, const std::string& name) {
+  for (const auto& r : reactions) {
+    if (r.name == name) return r.force;
+  }
+  return Vec2::Constant(kNaN);
+}
+
+const Wall* wall_named(const Scene& scene, const std::string& name) {
+  for (const auto& w : scene.walls) {
+    if (w.name == name) return &w;
+  }
+  return nullptr;
+}
+
+const RigidBody* rigid_body_named(const Scene& scene, const std::string& name) {
+  for (const auto& r : scene.rigid_bodies) {
+    if (r.name == name) return &r;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+double front_position(const Particles& particles, int body, double spacing,
+                      double min_thickness) {
+  std::map<long, int> column_count;
+  auto column = [spacing](double x) { return static_cast<long>(std::floor(x / spacing)); };
+  if (min_thickness > 1.0) {
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+      if (particles.body[i] == body) ++column_count[column(particles.position[i].x())];
+    }
+  }
+  double front = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (particles.body[i] != body) continue;
+    const double x = particles.position[i].x();
+    if (min_thickness > 1.0 && column_count[column(x)] < min_thickness) continue;
+    front = std::max(front, x);
+  }
+  return std::isfinite(front) ? front : kNaN;
+}
+
+double evaluate_measure(const Measure& measure, const Scene& scene, const Particles& particles,
+                        const std::vector<Reaction>& reactions, double time) {
+  double value = kNaN;
+  switch (measure.kind) {
+    case MeasureKind::front:
+      value = front_position(particles, body_index(scene, measure.target), scene.spacing,
+                             measure.min_thickness);
+      break;
+    case MeasureKind::height: {
+      const int body = body_index(scene, measure.target);
+      double top = -std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < particles.size(); ++i) {
+        if (particles.body[i] == body) top = std::max(top, particles.position[i].y());
+      }
+      value = std::isfinite(top) ? top : kNaN;
+      break;
+    }
+    case MeasureKind::max_displacement: {
+      const int body = body_index(scene, measure.target);
+      double largest = 0.0;
+      for (std::size_t i = 0; i < particles.size(); ++i) {
+        if (particles.body[i] == body) {
+          largest = std::max(largest, std::abs(component_of(particles.displacement[i],
+                                                            measure.component)));
+        }
+      }
+      value = largest;
+      break;
+    }
+    case MeasureKind::reaction:
+      value = component_of(reaction_of(reactions, measure.target), measure.component);
+      break;
+    case MeasureKind::wall_stress: {
+      const Wall* wall = wall_named(scene, measure.target);
+      if (!wall) break;
+      const auto points = wall_points_at(*wall, time);
+      const double chord = (points.back() - points.front()).norm();
+      value = component_of(reaction_of(reactions, measure.target), measure.component) / chord;
+      break;
+    }
+    case MeasureKind::period: {
+      const int body = body_index(scene, measure.target);
+      Vec2 momentum = Vec2::Zero();
+      double mass = 0.0;
+      for (std::size_t i = 0; i < particles.size(); ++i) {
+        if (particles.body[i] != body) continue;
+        momentum += particles.mass[i] * particles.velocity[i];
+        mass += particles.mass[i];
+      }
+      value = mass > 0.0 ? component_of(momentum / mass, measure.component) : kNaN;
+      break;
+    }
+    case MeasureKind::safety_factor:
+      value = scene.strength_reduction.factor;
+      break;
+    case MeasureKind::displacement:
+      if (const Wall* wall = wall_named(scene, measure.target)) {
+        value = component_of(schedule_integral(wall->velocity, time), measure.component);
+      } else if (const RigidBody* rigid = rigid_body_named(scene, measure.target)) {
+        value = component_of(schedule_integral(rigid->velocity, time), measure.component);
+      }
+      break;
+  }
+  return value;
+}
+
+double period_from_zero_crossings(const std::vector<double>& time,
+                                  const std::vector<double>& velocity) {
+  std::vector<double> crossings;
+  for (std::size_t k = 1; k < velocity.size(); ++k) {
+    const double a = velocity[k - 1], b = velocity[k];
+    if (!(std::isfinite(a) && std::isfinite(b))) continue;
+    if ((a < 0.0 && b >= 0.0) || (a > 0.0 && b <= 0.0)) {
+      const double s = a / (a - b);
+      crossings.push_back(time[k - 1] + s * (time[k] - time[k - 1]));
+    }
+  }
+  if (crossings.size() < 2) return kNaN;
+  return 2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+}
+
+MeasureRecorder::MeasureRecorder(const Scene& scene)
+    : scene_(scene),
+      divisor_(scene.measures.size(), -1),
+      raw_(scene.measures.size()),
+      velocity_(scene.measures.size()),
+      columns_(scene.measures.size() + 1) {
+  for (std::size_t m = 0; m < scene.measures.size(); ++m) {
+    for (std::size_t k = 0; k < scene.measures.size(); ++k) {
+      if (scene.measures[k].name == scene.measures[m].divide_by) divisor_[m] = static_cast<int>(k);
+    }
+  }
+}
+
+void MeasureRecorder::sample(double time, const Particles& particles,
+                             const std::vector<Reaction>& reactions) {
+  columns_[0].push_back(time);
+  for (std::size_t m = 0; m < scene_.measures.size(); ++m) {
+    raw_[m] = evaluate_measure(scene_.measures[m], scene_, particles, reactions, time);
+  }
+  for (std::size_t m = 0; m < scene_.measures.size(); ++m) {
+    const Measure& measure = scene_.measures[m];
+    double value = raw_[m];
+    if (measure.kind == MeasureKind::period) {
+      velocity_[m].push_back(value);
+      value = period_from_zero_crossings(columns_[0], velocity_[m]);
+    }
+    if (divisor_[m] >= 0) value /= raw_[static_cast<std::size_t>(divisor_[m])];
+    columns_[m + 1].push_back(value * measure.scale);
+  }
+}
+
+std::vector<std::string> MeasureRecorder::names() const {
+  std::vector<std::string> out{"time"};
+  for (const auto& m : scene_.measures) out.push_back(m.name);
+  return out;
+}
+
+double MeasureRecorder::final_value(const std::string& name) const {
+  for (std::size_t m = 0; m < scene_.measures.size(); ++m) {
+    if (scene_.measures[m].name != name) continue;
+    const auto& series = columns_[m + 1];
+    if (series.empty()) return kNaN;
+    switch (scene_.measures[m].at) {
+      case MeasureAt::end:
+      case MeasureAt::series:
+        return series.back();
+      case MeasureAt::max: {
+        double largest = kNaN;
+        for (double v : series) {
+          if (std::isfinite(v) && !(std::abs(v) <= std::abs(largest))) largest = v;
+        }
+        return largest;
+      }
+      case MeasureAt::time: {
+        const auto& t = columns_[0];
+        const double target = scene_.measures[m].time;
+        for (std::size_t k = 1; k < t.size(); ++k) {
+          if (t[k] >= target) {
+            const double s = (target - t[k - 1]) / (t[k] - t[k - 1]);
+            return series[k - 1] + s * (series[k] - series[k - 1]);
+          }
+        }
+        return kNaN;  // the run did not reach that time
+      }
+    }
+    return kNaN;
+  }
+  return kNaN;
+}
+
+Json MeasureRecorder::final_values() const {
+  Json out = Json::object();
+  for (const auto& m : scene_.measures) out[m.name] = final_value(m.name);
+  return out;
+}
+
+Json MeasureRecorder::accuracy() const {
+  Json out = Json::object();
+  for (const auto& ref : scene_.references) {
+    const double value = final_value(ref.measure);
+    const double error = std::abs(value - ref.value) / std::abs(ref.value);
+    Json entry = Json::object();
+    entry["value"] = value;
+    entry["reference"] = ref.value;
+    entry["rel_error"] = error;
+    entry["source"] = ref.source;
+    if (ref.tolerance > 0.0) {
+      entry["tolerance"] = ref.tolerance;
+      entry["passed"] = std::isfinite(error) && error <= ref.tolerance;
+    }
+    out[ref.measure] = entry;
+  }
+  return out;
+}
+
+}  // namespace duet

@@ -1,0 +1,59 @@
+#pragma once
+// The scene's measures, sampled during a run as time series, reduced to one value each (at end,
+// or the maximum), and scored against the scene's references.
+
+#include <string>
+#include <vector>
+
+#include "common/json.hpp"
+#include "common/particles.hpp"
+#include "common/scene.hpp"
+#include "common/solver.hpp"
+
+namespace duet {
+
+/// Instantaneous raw value of one measure for the current state (see Measure in
+/// common/scene.hpp), before divide_by and scale. For `period` it is the velocity of the body's
+/// centre of mass along the component, from which the recorder derives the period.
+double evaluate_measure(const Measure& measure, const Scene& scene, const Particles& particles,
+                        const std::vector<Reaction>& reactions, double time);
+
+/// Toe of a body: the largest x among particles whose lattice column (width dp) holds at least
+/// `min_thickness` spacings of material (every particle counts when min_thickness <= 1).
+double front_position(const Particles& particles, int body, double spacing, double min_thickness);
+
+/// Period of an oscillation from its velocity samples: twice the mean interval between successive
+/// zero crossings (linear interpolation between samples); NaN before two crossings.
+double period_from_zero_crossings(const std::vector<double>& time,
+                                  const std::vector<double>& velocity);
+
+/// Samples every measure as a time series. A measure with divide_by is divided by the other
+/// measure's raw value at the same sample, then multiplied by its scale.
+class MeasureRecorder {
+ public:
+  explicit MeasureRecorder(const Scene& scene);
+
+  void sample(double time, const Particles& particles, const std::vector<Reaction>& reactions);
+
+  /// "time" then every measure's name, and the sampled columns in the same order.
+  std::vector<std::string> names() const;
+  const std::vector<std::vector<double>>& columns() const { return columns_; }
+
+  /// One value per measure: the last sample (at = end | series), the largest in magnitude
+  /// (at = max), or the series interpolated at the measure's time (at = time).
+  Json final_values() const;
+  double final_value(const std::string& name) const;
+
+  /// {"<measure>": {"value", "reference", "rel_error", "source", "tolerance", "passed"}} for every
+  /// reference of the scene.
+  Json accuracy() const;
+
+ private:
+  const Scene& scene_;
+  std::vector<int> divisor_;                  // per measure: index of its divide_by, or -1
+  std::vector<double> raw_;                   // scratch: raw values of one sample
+  std::vector<std::vector<double>> velocity_; // per measure: centre-of-mass velocity (period)
+  std::vector<std::vector<double>> columns_;  // [0] time, then one per measure
+};
+
+}  // namespace duet

@@ -1,0 +1,253 @@
+#pragma once
+// The scene: what a TOML scene file describes, physics only (DESIGN.md "one scene, several
+// methods"). Plain data; common/scene_loader.hpp fills every default, so a solver never sees a
+// missing value. SI units (m, s, kg, Pa); angles in the file are degrees; tension positive.
+// Plane strain: forces are per metre of thickness, masses kg/m, areas m^2.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/tensor.hpp"
+#include "constitutive/parameters.hpp"
+
+namespace duet {
+
+/// A piecewise-linear schedule of a 2-vector (a velocity in m/s, or a force in N/m): knots
+/// (time, x, y), held constant before the first knot and after the last. Empty: zero (a fixed
+/// wall, no load). Evaluate with schedule_value / schedule_integral (common/geometry.hpp).
+struct Knot {
+  double time = 0.0;  // s
+  Vec2 value = Vec2::Zero();
+};
+using Schedule = std::vector<Knot>;
+
+struct Material {
+  std::string name;
+  std::string model;     // registry name: "hypoplastic", "drucker-prager", ...
+  double density = 0.0;  // kg/m^3
+  // Every other key of [material.<name>]: the model's parameters, as the user gave them.
+  std::map<std::string, constitutive::ParameterValue> parameters;
+  // The parameters as the model read them (defaults and derived values included).
+  std::map<std::string, constitutive::ParameterValue> resolved;
+};
+
+enum class ShapeKind { rectangle, polygon };
+
+/// A body of soil. Both shapes are kept as a counter-clockwise polygon in `outline` (a rectangle
+/// as its four corners), so geometry code needs one case only.
+struct Body {
+  std::string name;
+  std::string material;
+  int material_index = -1;  // index into Scene::materials
+  ShapeKind shape = ShapeKind::rectangle;
+  Vec2 min = Vec2::Zero();  // rectangle corners (also the bounding box of a polygon)
+  Vec2 max = Vec2::Zero();
+  std::vector<Vec2> outline;  // counter-clockwise, not repeating the first point
+  Vec2 initial_velocity = Vec2::Zero();
+};
+
+enum class WallCondition { no_slip, free_slip };
+
+/// A wall: a polyline (open, or closed when the last point repeats the first). It either
+/// translates with `velocity` or, when `radial` is set, every point moves away from `centre`
+/// at the radial speed of `radial_velocity` (its vx is the radial speed; cavity expansion).
+struct Wall {
+  std::string name;
+  std::vector<Vec2> points;
+  WallCondition condition = WallCondition::no_slip;
+  Schedule velocity;
+  bool radial = false;
+  Vec2 centre = Vec2::Zero();
+  Schedule radial_velocity;  // knots (time, v_r, 0)
+};
+
+enum class Surface { rough, smooth, friction };
+
+/// A rigid body: a counter-clockwise polygon moving with a prescribed velocity.
+struct RigidBody {
+  std::string name;
+  std::vector<Vec2> outline;  // counter-clockwise, not repeating the first point
+  Schedule velocity;
+  Surface surface = Surface::rough;
+  double friction = 0.0;  // Coulomb coefficient mu, used when surface == friction
+};
+
+enum class InitialStressKind { none, isotropic, geostatic, gravity_loading };
+
+/// How the bodies start. isotropic: sigma = -pressure I. geostatic: sigma_v = rho g (surface - y)
+/// with each body's top as its surface, sigma_h = sigma_zz = K0 sigma_v (compression negative).
+/// gravity-loading: gravity applied from zero stress with a velocity damping force
+/// -damping m v for `time` seconds before the clock starts.
+struct InitialStress {
+  InitialStressKind kind = InitialStressKind::none;
+  double pressure = 0.0;  // Pa, isotropic
+  double K0 = 0.5;        // -, geostatic
+  double damping = 0.0;   // 1/s, gravity-loading
+  double time = 0.0;      // s, gravity-loading
+};
+
+/// A point or distributed load: a total force (N/m), piecewise-linear in time, shared equally by
+/// the particles of `body` that lie initially in the box [min, max].
+struct Load {
+  std::string name;
+  std::string body;
+  int body_index = -1;
+  Vec2 min = Vec2::Zero();
+  Vec2 max = Vec2::Zero();
+  Schedule force;  // knots (time, fx, fy), N/m
+};
+
+/// Strength reduction (Peng 2015 eqs 39-40): every material's `c` and friction angle `phi` are
+/// reduced by `factor` before its model is built. rule "angle": phi_f = phi / f (Peng eq 40);
+/// rule "tangent": tan phi_f = tan phi / f (Griffiths & Lane 1999). c_f = c / f (Peng eq 39).
+struct StrengthReduction {
+  double factor = 1.0;
+  std::string rule = "tangent";
+};
+
+struct Time {
+  double end_time = 0.0;         // s
+  double output_interval = 0.0;  // s; default end_time / 50
+};
+
+struct Domain {
+  Vec2 min = Vec2::Zero();
+  Vec2 max = Vec2::Zero();
+  double padding = 0.0;  // m, used when min/max were not given
+};
+
+enum class MeasureKind {
+  front,
+  height,
+  reaction,
+  wall_stress,
+  max_displacement,
+  displacement,
+  period,
+  safety_factor
+};
+enum class MeasureAt { end, max, series, time };
+
+/// A quantity recorded during a run.
+///  front: max x of the target body's particles (min_thickness: ignore particles in columns with
+///    fewer than that many spacings of material, so a lone particle does not count).
+///  height: max y of the body.
+///  max_displacement: largest particle displacement of the body (component x | y | magnitude).
+///  reaction: force of the soil on a wall or rigid body, component x | y | magnitude (N/m).
+///  wall_stress: that reaction divided by the chord (end-to-end length) of the wall's current
+///    polyline; for a straight wall the chord is its length, and for a uniformly loaded curved
+///    wall the resultant equals the pressure times the chord, so this is the mean pressure.
+///  displacement: of a wall or rigid body, integrated from its velocity schedule.
+///  period: period of the oscillation of the body's centre of mass along component x | y, from
+///    successive zero crossings of its velocity (elastic bar).
+///  safety_factor: the run's strength_reduction.factor; a sweep over it (duet stability --vary
+///    strength_reduction.factor=...) finds the factor at which the slope fails (Peng 2015 5.3).
+/// at: the value at the end, the maximum over the run, the whole series, or the value at `time`.
+/// divide_by: another measure; the recorded value is this one divided by that one (K0 as the
+/// ratio of a side wall's stress to the top plate's). scale multiplies the result (e.g. 1/c_u).
+struct Measure {
+  std::string name;
+  MeasureKind kind = MeasureKind::front;
+  std::string target;
+  std::string component;  // "x" | "y" | "magnitude"; "" where the kind has none
+  MeasureAt at = MeasureAt::end;
+  double time = 0.0;           // s, at == time
+  double min_thickness = 0.0;  // spacings, front only
+  std::string divide_by;       // "" or the name of another measure
+  double scale = 1.0;
+};
+
+struct Reference {
+  std::string measure;
+  double value = 0.0;
+  std::string source;
+  double tolerance = 0.0;  // relative; 0: not scored pass/fail, only reported
+};
+
+enum class SphKernel { cubic_spline, wendland_c2 };
+enum class SphWallStress { sigma_max, bui };
+enum class SphIntegrator { verlet, leapfrog };
+
+/// [sph] (Peng 2015 section 5: h/dp = sqrt(2), alpha = 1, beta = 0.1; artificial stress only
+/// where there is tension, so off by default).
+struct SphOptions {
+  SphKernel kernel = SphKernel::cubic_spline;
+  double h_over_dp = 1.4142135623730951;
+  double alpha = 1.0;
+  double beta = 0.1;
+  double artificial_stress = 0.0;
+  double cfl = 0.05;
+  double sound_speed = 100.0;  // m/s
+  std::string wall_treatment = "dummy";
+  int dummy_layers = 3;
+  SphWallStress wall_stress = SphWallStress::sigma_max;
+  SphIntegrator integrator = SphIntegrator::verlet;
+  bool continuity = false;
+};
+
+enum class Remesh { every_step, angle };
+
+/// [spfem] (Zhang 2018 / Yuan 2019): alpha shape alpha = alpha_factor * dp.
+struct SpfemOptions {
+  double alpha_factor = 1.5;
+  double time_step_safety = 0.5;
+  double damping = 0.0;
+  // Stabilisation of nodal integration: weight of the smoothed-strain stabilisation term
+  // (0 = pure node-based smoothing as in the slides; 0.1 is a common NS-FEM choice).
+  double stabilisation = 0.0;
+  Remesh remesh = Remesh::every_step;
+  double remesh_angle = 15.0;  // deg
+};
+
+/// [spfem.implicit] (Zhang 2018: Newton-Raphson with load steps and step cutting).
+struct SpfemImplicitOptions {
+  double tolerance = 1e-6;
+  int max_iterations = 20;
+  int load_steps = 100;
+  int max_step_cuts = 5;
+};
+
+struct Scene {
+  std::string path;  // the file it came from
+  std::string name;  // `name` key, default the file's stem
+  std::string description;
+  double spacing = 0.0;         // m, particle spacing dp
+  Vec2 gravity = Vec2::Zero();  // m/s^2, default zero: a scene says it
+  bool confined = false;        // every body must be enclosed by walls and rigid bodies
+  std::vector<Material> materials;
+  std::vector<Body> bodies;
+  std::vector<Wall> walls;
+  std::vector<RigidBody> rigid_bodies;
+  std::vector<Load> loads;
+  InitialStress initial_stress;
+  StrengthReduction strength_reduction;
+  Time time;
+  Domain domain;
+  std::vector<Measure> measures;
+  std::vector<Reference> references;
+  SphOptions sph;
+  SpfemOptions spfem;
+  SpfemImplicitOptions spfem_implicit;
+  std::string resolved_toml;  // the whole scene with every default filled in
+
+  int material_index(const std::string& material_name) const {
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+      if (materials[i].name == material_name) return static_cast<int>(i);
+    }
+    return -1;
+  }
+};
+
+/// The enum spellings used in scene files, for the loader and for output.
+const char* to_string(WallCondition c);
+const char* to_string(Surface s);
+const char* to_string(InitialStressKind k);
+const char* to_string(MeasureKind k);
+const char* to_string(MeasureAt a);
+const char* to_string(SphKernel k);
+const char* to_string(SphWallStress w);
+const char* to_string(SphIntegrator i);
+const char* to_string(Remesh r);
+
+}  // namespace duet

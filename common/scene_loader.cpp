@@ -1,0 +1,569 @@
+#include "common/scene_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "common/geometry.hpp"
+#include "common/input_error.hpp"
+#include "common/scene_schema.hpp"
+#include "common/scene_validation.hpp"
+#include "common/suggest.hpp"
+#include "constitutive/registry.hpp"
+
+namespace duet {
+
+namespace {
+
+// The schema: keys of every table. Later issues add keys here (and read them below).
+const std::vector<std::string> kRootKeys = {
+    "name",   "description",    "spacing",   "gravity", "confined", "time",
+    "domain", "initial_stress", "material",  "body",    "wall",     "rigid_body",
+    "load",   "measure",        "reference", "sph",     "spfem",    "strength_reduction"};
+const std::vector<std::string> kCollections = {"material", "body",    "wall",     "rigid_body",
+                                               "load",     "measure", "reference"};
+const std::vector<std::string> kTimeKeys = {"end_time", "output_interval"};
+const std::vector<std::string> kDomainKeys = {"min", "max", "padding"};
+const std::vector<std::string> kInitialStressKeys = {"kind", "pressure", "K0", "damping", "time"};
+const std::vector<std::string> kBodyKeys = {"material", "shape",    "min",
+                                            "max",      "vertices", "initial_velocity"};
+const std::vector<std::string> kWallKeys = {"points", "condition", "velocity", "centre",
+                                            "radial_velocity"};
+const std::vector<std::string> kRigidKeys = {"vertices", "velocity", "surface", "friction"};
+const std::vector<std::string> kLoadKeys = {"body", "min", "max", "force"};
+const std::vector<std::string> kMeasureKeys = {"kind", "target",        "component", "at",
+                                               "time", "min_thickness", "divide_by", "scale"};
+const std::vector<std::string> kStrengthReductionKeys = {"factor", "rule"};
+const std::vector<std::string> kReferenceKeys = {"value", "source", "tolerance"};
+const std::vector<std::string> kSphKeys = {"kernel",      "h_over_dp",         "alpha",
+                                           "beta",        "artificial_stress", "cfl",
+                                           "sound_speed", "wall_treatment",    "dummy_layers",
+                                           "wall_stress", "integrator",        "continuity"};
+const std::vector<std::string> kSpfemKeys = {"alpha_factor",  "time_step_safety", "damping",
+                                             "stabilisation", "remesh",           "remesh_angle",
+                                             "implicit"};
+const std::vector<std::string> kImplicitKeys = {"tolerance", "max_iterations", "load_steps",
+                                                "max_step_cuts"};
+
+std::string trim(std::string s) {
+  const auto not_space = [](unsigned char c) { return !std::isspace(c); };
+  s.erase(s.begin(), std::find_if(s.begin(), s.end(), not_space));
+  s.erase(std::find_if(s.rbegin(), s.rend(), not_space).base(), s.end());
+  return s;
+}
+
+std::vector<std::string> split(const std::string& s, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(s);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  if (!s.empty() && s.back() == separator) parts.emplace_back();
+  return parts;
+}
+
+std::vector<std::string> names_of(const toml::table* table) {
+  std::vector<std::string> names;
+  if (table) {
+    for (const auto& [k, v] : *table) names.emplace_back(k.str());
+  }
+  return names;
+}
+
+/// Applies one --set override to the parsed file. Creating a new named entry of a collection
+/// (a material that does not exist) is refused with a did-you-mean; other missing tables are
+/// created, so [sph] options can be set on a scene without an [sph] table.
+void apply_override(toml::table& root, const std::string& text, SceneSource& source) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos) {
+    throw InputError("--set " + text + ": missing '='; expected dotted.key=value");
+  }
+  const std::string key = trim(text.substr(0, eq));
+  const std::string value_text = trim(text.substr(eq + 1));
+  const std::vector<std::string> segments = split(key, '.');
+  if (key.empty() || std::any_of(segments.begin(), segments.end(),
+                                 [](const std::string& s) { return s.empty(); })) {
+    throw InputError("--set " + text + ": empty key; expected dotted.key=value");
+  }
+  // The value as TOML (number, bool, "string", [array]); a bare word is taken as a string.
+  toml::table holder;
+  try {
+    holder = toml::parse("v = " + value_text);
+  } catch (const toml::parse_error&) {
+    holder.insert_or_assign("v", value_text);
+  }
+  const toml::node& value = *holder.get("v");
+
+  toml::table* current = &root;
+  std::string path;
+  for (std::size_t i = 0; i + 1 < segments.size(); ++i) {
+    const std::string& segment = segments[i];
+    path += (i ? "." : "") + segment;
+    toml::node* child = current->get(segment);
+    if (!child) {
+      const bool named_entry = i == 1 && std::find(kCollections.begin(), kCollections.end(),
+                                                   segments[0]) != kCollections.end();
+      if (named_entry) {
+        const std::vector<std::string> names = names_of(current);
+        throw InputError("--set " + text + ": " + path + ": no " + segments[0] + " named '" +
+                         segment + "'" + did_you_mean(segment, names) + "; expected one of " +
+                         (names.empty() ? std::string("(none in the file)") : join(names)));
+      }
+      child = &current->insert_or_assign(segment, toml::table{}).first->second;
+    }
+    if (!child->is_table()) {
+      throw InputError("--set " + text + ": " + path + " is " + describe_type(*child) +
+                       ", not a table; expected a key path that exists in the scene");
+    }
+    current = child->as_table();
+  }
+  current->insert_or_assign(segments.back(), value);
+  source.overrides[key] = value_text;
+}
+
+/// Peng 2015 eqs 39-40: c_f = c / f, phi_f = phi / f ("angle"); or tan phi_f = tan phi / f
+/// ("tangent", Griffiths & Lane 1999).
+void reduce_strength(Material& m, const StrengthReduction& reduction, SectionReader& r) {
+  if (reduction.factor == 1.0) return;
+  auto* phi = m.parameters.count("phi") ? std::get_if<double>(&m.parameters["phi"]) : nullptr;
+  auto* c = m.parameters.count("c") ? std::get_if<double>(&m.parameters["c"]) : nullptr;
+  if (!phi && !c) {
+    r.fail("", "strength_reduction.factor is set but this material has no phi or c",
+           "materials given with phi (deg) and/or c (Pa)");
+  }
+  const double f = reduction.factor;
+  if (c) *c /= f;  // Peng 2015 eq 39
+  if (phi) {
+    const double deg = std::numbers::pi / 180.0;
+    *phi = reduction.rule == "angle" ? *phi / f  // Peng 2015 eq 40
+                                     : std::atan(std::tan(*phi * deg) / f) / deg;
+  }
+}
+
+Material read_material(const std::string& name, const toml::node& node,
+                       const StrengthReduction& reduction, const SceneSource& source,
+                       toml::table& resolved) {
+  const std::string path = "material." + name;
+  SectionReader r(node.as_table(), path, {}, source, resolved);
+  if (!node.is_table()) r.fail("", "wrong type: " + describe_type(node), "a table [" + path + "]");
+  Material m;
+  m.name = name;
+  m.model = r.string("model");
+  m.density = r.number("density", positive("a density (kg/m^3)"));
+  for (const auto& [k, v] : *node.as_table()) {
+    const std::string key(k.str());
+    if (key == "model" || key == "density") continue;
+    if (auto d = v.value_exact<double>()) {
+      m.parameters[key] = *d;
+    } else if (auto i = v.value_exact<std::int64_t>()) {
+      m.parameters[key] = static_cast<double>(*i);
+    } else if (auto s = v.value_exact<std::string>()) {
+      m.parameters[key] = *s;
+    } else {
+      r.fail(key, "wrong type: " + describe_type(v), "a number or a string (a model parameter)");
+    }
+  }
+  reduce_strength(m, reduction, r);
+  try {
+    constitutive::make_model(m.model, m.parameters, path, &m.resolved);
+  } catch (const InputError& e) {
+    // Point at the parameter the message names ("material.sand.nu = ..."), else the model key.
+    const std::string message = e.what();
+    std::string at = "model";
+    for (const auto& [key, value] : m.parameters) {
+      const std::string prefix = path + "." + key;
+      if (message.starts_with(prefix + " ") || message.starts_with(prefix + ":")) at = key;
+    }
+    throw InputError(r.where(at) + ": " + message);
+  }
+  for (const auto& [key, value] : m.resolved) {
+    if (const double* d = std::get_if<double>(&value)) {
+      resolved.insert_or_assign(key, *d);
+    } else {
+      resolved.insert_or_assign(key, std::get<std::string>(value));
+    }
+  }
+  return m;
+}
+
+std::vector<Vec2> read_polygon(SectionReader& r, std::string_view key) {
+  std::vector<Vec2> polygon = r.points(key, 3);
+  if (polygon.size() > 3 && (polygon.front() - polygon.back()).norm() == 0.0) polygon.pop_back();
+  if (!is_simple_polygon(polygon) || std::abs(signed_area(polygon)) <= 0.0) {
+    r.fail(key, "the outline crosses itself, repeats a vertex or encloses no area",
+           "the vertices of a simple polygon, in order (either orientation)");
+  }
+  make_counter_clockwise(polygon);
+  toml::array resolved;
+  for (const Vec2& p : polygon) resolved.push_back(toml::array{p.x(), p.y()});
+  r.resolved().insert_or_assign(key, std::move(resolved));
+  return polygon;
+}
+
+Body read_body(const std::string& name, SectionReader& r, const std::vector<Material>& materials) {
+  Body b;
+  b.name = name;
+  b.material = r.string("material");
+  std::vector<std::string> known;
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    known.push_back(materials[i].name);
+    if (materials[i].name == b.material) b.material_index = static_cast<int>(i);
+  }
+  if (b.material_index < 0) {
+    r.fail("material", "unknown material \"" + b.material + "\"" + did_you_mean(b.material, known),
+           known.empty() ? "a [material." + b.material + "] table" : "one of " + join(known));
+  }
+  const std::string shape =
+      r.choice("shape", {"rectangle", "polygon"}, r.has("vertices") ? "polygon" : "rectangle");
+  if (shape == "rectangle") {
+    b.shape = ShapeKind::rectangle;
+    b.min = r.vec2("min");
+    b.max = r.vec2("max");
+    if (!(b.max.x() > b.min.x() && b.max.y() > b.min.y())) {
+      r.fail("max", "not above and to the right of min", "max > min in x and in y (m)");
+    }
+    b.outline = {b.min, {b.max.x(), b.min.y()}, b.max, {b.min.x(), b.max.y()}};
+  } else {
+    b.shape = ShapeKind::polygon;
+    b.outline = read_polygon(r, "vertices");
+    bounding_box(b.outline, b.min, b.max);
+  }
+  b.initial_velocity = r.vec2("initial_velocity", Vec2::Zero());
+  r.finish();
+  return b;
+}
+
+Wall read_wall(const std::string& name, SectionReader& r) {
+  Wall w;
+  w.name = name;
+  w.points = r.points("points", 2);
+  w.condition = r.choice("condition", {"no-slip", "free-slip"}, "no-slip") == "no-slip"
+                    ? WallCondition::no_slip
+                    : WallCondition::free_slip;
+  if (r.has("radial_velocity")) {
+    if (r.has("velocity")) {
+      r.fail("velocity", "given together with radial_velocity",
+             "either a translation (velocity) or a radial motion (centre, radial_velocity)");
+    }
+    w.radial = true;
+    w.centre = r.vec2("centre");
+    w.radial_velocity = r.schedule("radial_velocity", 2);
+  } else {
+    w.velocity = r.schedule("velocity", 3);
+  }
+  r.finish();
+  return w;
+}
+
+RigidBody read_rigid_body(const std::string& name, SectionReader& r) {
+  RigidBody rb;
+  rb.name = name;
+  rb.outline = read_polygon(r, "vertices");
+  rb.velocity = r.schedule("velocity", 3);
+  const std::string surface = r.choice("surface", {"rough", "smooth", "friction"}, "rough");
+  rb.surface = surface == "rough"    ? Surface::rough
+               : surface == "smooth" ? Surface::smooth
+                                     : Surface::friction;
+  if (rb.surface == Surface::friction) {
+    rb.friction = r.number("friction", non_negative("a friction coefficient mu (-)"));
+  }
+  r.finish();
+  return rb;
+}
+
+Load read_load(const std::string& name, SectionReader& r) {
+  Load l;
+  l.name = name;
+  l.body = r.string("body");
+  l.min = r.vec2("min");
+  l.max = r.vec2("max");
+  if (!(l.max.x() >= l.min.x() && l.max.y() >= l.min.y())) {
+    r.fail("max", "below or left of min", "a box with max >= min (m)");
+  }
+  l.force = r.schedule("force", 3);
+  if (l.force.empty()) r.fail("force", "missing key", "a schedule [[t, fx, fy], ...] (N/m)");
+  r.finish();
+  return l;
+}
+
+Measure read_measure(const std::string& name, SectionReader& r) {
+  Measure m;
+  m.name = name;
+  const std::vector<std::string> kinds = {"front",       "height",           "reaction",
+                                          "wall_stress", "max_displacement", "displacement",
+                                          "period",      "safety_factor"};
+  const std::string kind = r.choice("kind", kinds, std::nullopt);
+  m.kind = static_cast<MeasureKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
+  if (m.kind != MeasureKind::safety_factor) m.target = r.string("target");
+  switch (m.kind) {
+    case MeasureKind::reaction:
+    case MeasureKind::wall_stress:
+    case MeasureKind::displacement:
+      m.component = r.choice("component", {"x", "y", "magnitude"}, std::nullopt);
+      break;
+    case MeasureKind::max_displacement:
+      m.component = r.choice("component", {"x", "y", "magnitude"}, "magnitude");
+      break;
+    case MeasureKind::period:
+      m.component = r.choice("component", {"x", "y"}, std::nullopt);
+      break;
+    default:
+      break;
+  }
+  const std::vector<std::string> ats = {"end", "max", "series", "time"};
+  const std::string at = r.choice("at", ats, "end");
+  m.at = static_cast<MeasureAt>(std::find(ats.begin(), ats.end(), at) - ats.begin());
+  if (m.at == MeasureAt::time) m.time = r.number("time", non_negative("a time (s)"));
+  if (m.kind == MeasureKind::front) {
+    m.min_thickness = r.number("min_thickness", 0.0, non_negative("a count of spacings"));
+  }
+  m.divide_by = r.string("divide_by", "");
+  m.scale = r.number("scale", 1.0, any_number());
+  r.finish();
+  return m;
+}
+
+Reference read_reference(const std::string& measure, SectionReader& r) {
+  Reference ref;
+  ref.measure = measure;
+  ref.value = r.number("value", any_number());
+  ref.source = r.string("source");
+  if (trim(ref.source).empty()) r.fail("source", "empty", "where the value comes from");
+  ref.tolerance = r.number("tolerance", 0.0, non_negative("a relative tolerance (-)"));
+  r.finish();
+  return ref;
+}
+
+InitialStress read_initial_stress(SectionReader& r) {
+  InitialStress s;
+  const std::vector<std::string> kinds = {"none", "isotropic", "geostatic", "gravity-loading"};
+  const std::string kind = r.choice("kind", kinds, "none");
+  s.kind =
+      static_cast<InitialStressKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
+  if (s.kind == InitialStressKind::isotropic) {
+    s.pressure = r.number("pressure", positive("a compressive pressure (Pa)"));
+  } else if (s.kind == InitialStressKind::geostatic) {
+    s.K0 = r.number("K0", positive("an earth pressure coefficient at rest (-)"));
+  } else if (s.kind == InitialStressKind::gravity_loading) {
+    s.damping = r.number("damping", positive("a damping coefficient (1/s)"));
+    s.time = r.number("time", positive("a duration (s)"));
+  }
+  r.finish();
+  return s;
+}
+
+SphOptions read_sph(SectionReader& r) {
+  SphOptions o;
+  o.kernel = r.choice("kernel", {"cubic-spline", "wendland-c2"}, "cubic-spline") == "cubic-spline"
+                 ? SphKernel::cubic_spline
+                 : SphKernel::wendland_c2;
+  o.h_over_dp = r.number("h_over_dp", o.h_over_dp, positive("a ratio h/dp (-)"));
+  o.alpha = r.number("alpha", o.alpha, non_negative("an artificial viscosity coefficient (-)"));
+  o.beta = r.number("beta", o.beta, non_negative("an artificial viscosity coefficient (-)"));
+  o.artificial_stress = r.number("artificial_stress", o.artificial_stress,
+                                 non_negative("an artificial stress coefficient (-)"));
+  o.cfl = r.number("cfl", o.cfl, positive("a Courant number (-)"));
+  o.sound_speed = r.number("sound_speed", o.sound_speed, positive("a speed (m/s)"));
+  o.wall_treatment = r.choice("wall_treatment", {"dummy"}, o.wall_treatment);
+  o.dummy_layers = r.integer("dummy_layers", o.dummy_layers, 1);
+  o.wall_stress = r.choice("wall_stress", {"sigma-max", "bui"}, "sigma-max") == "sigma-max"
+                      ? SphWallStress::sigma_max
+                      : SphWallStress::bui;
+  o.integrator = r.choice("integrator", {"verlet", "leapfrog"}, "verlet") == "verlet"
+                     ? SphIntegrator::verlet
+                     : SphIntegrator::leapfrog;
+  o.continuity = r.boolean("continuity", o.continuity);
+  r.finish();
+  return o;
+}
+
+SpfemOptions read_spfem(SectionReader& r) {
+  SpfemOptions o;
+  o.alpha_factor = r.number("alpha_factor", o.alpha_factor, positive("a multiple of dp (-)"));
+  o.time_step_safety =
+      r.number("time_step_safety", o.time_step_safety, positive("a safety factor (-)"));
+  o.damping = r.number("damping", o.damping, non_negative("a damping coefficient (1/s)"));
+  o.stabilisation =
+      r.number("stabilisation", o.stabilisation, non_negative("a stabilisation weight (-)"));
+  o.remesh = r.choice("remesh", {"every-step", "angle"}, "every-step") == "every-step"
+                 ? Remesh::every_step
+                 : Remesh::angle;
+  o.remesh_angle = r.number("remesh_angle", o.remesh_angle, in_closed(0.0, 90.0, "an angle (deg)"));
+  r.finish({"implicit"});
+  return o;
+}
+
+SpfemImplicitOptions read_implicit(SectionReader& r) {
+  SpfemImplicitOptions o;
+  o.tolerance = r.number("tolerance", o.tolerance, positive("a relative residual (-)"));
+  o.max_iterations = r.integer("max_iterations", o.max_iterations, 1);
+  o.load_steps = r.integer("load_steps", o.load_steps, 1);
+  o.max_step_cuts = r.integer("max_step_cuts", o.max_step_cuts, 0);
+  r.finish();
+  return o;
+}
+
+/// Reads every [kind.<name>] table of a collection with `read(name, reader)`.
+template <typename T, typename Read>
+std::vector<T> read_collection(SectionReader& root, const std::string& kind,
+                               const std::vector<std::string>& keys, const SceneSource& source,
+                               toml::table& resolved, Read read) {
+  std::vector<T> out;
+  const toml::table* table = root.table(kind);
+  if (!table) return out;
+  toml::table& resolved_kind = resolved_child(resolved, kind);
+  for (const auto& [k, v] : *table) {
+    const std::string name(k.str());
+    SectionReader r(v.as_table(), kind + "." + name, keys, source,
+                    resolved_child(resolved_kind, name));
+    if (!v.is_table()) {
+      r.fail("", "wrong type: " + describe_type(v), "a table [" + kind + "." + name + "]");
+    }
+    out.push_back(read(name, r));
+  }
+  return out;
+}
+
+/// Default domain: the bounding box of bodies, walls and rigid bodies, padded.
+void fill_domain(Scene& scene, SectionReader& r) {
+  std::vector<Vec2> points;
+  for (const Body& b : scene.bodies)
+    points.insert(points.end(), b.outline.begin(), b.outline.end());
+  for (const Wall& w : scene.walls) points.insert(points.end(), w.points.begin(), w.points.end());
+  for (const RigidBody& rb : scene.rigid_bodies) {
+    points.insert(points.end(), rb.outline.begin(), rb.outline.end());
+  }
+  Vec2 lo, hi;
+  bounding_box(points, lo, hi);
+  const double extent = (hi - lo).maxCoeff();
+  // Default padding: a quarter of the scene's larger extent (room for run-out beyond the walls).
+  scene.domain.padding = r.number("padding", 0.25 * extent, non_negative("a length (m)"));
+  if (r.has("min") || r.has("max")) {
+    scene.domain.min = r.vec2("min");
+    scene.domain.max = r.vec2("max");
+    if (!(scene.domain.max.x() > scene.domain.min.x() &&
+          scene.domain.max.y() > scene.domain.min.y())) {
+      r.fail("max", "not above and to the right of min", "max > min in x and in y (m)");
+    }
+  } else {
+    scene.domain.min = r.vec2("min", lo - Vec2::Constant(scene.domain.padding));
+    scene.domain.max = r.vec2("max", hi + Vec2::Constant(scene.domain.padding));
+  }
+  r.finish();
+}
+
+Scene read_scene(const toml::table& root, const SceneSource& source) {
+  Scene scene;
+  scene.path = source.file;
+  toml::table resolved;
+  SectionReader r(&root, "", kRootKeys, source, resolved);
+  auto section = [&](const std::string& key, const std::vector<std::string>& keys) {
+    return SectionReader(r.table(key), key, keys, source, resolved_child(resolved, key));
+  };
+
+  scene.name = r.string("name", std::filesystem::path(source.file).stem().string());
+  scene.description = r.string("description", "");
+  scene.spacing = r.number("spacing", positive("a particle spacing (m)"));
+  scene.gravity = r.vec2("gravity", Vec2::Zero());
+  scene.confined = r.boolean("confined", false);
+
+  SectionReader time = section("time", kTimeKeys);
+  scene.time.end_time = time.number("end_time", positive("an end time (s)"));
+  scene.time.output_interval = time.number("output_interval", scene.time.end_time / 50.0,
+                                           positive("an output interval (s)"));
+  if (scene.time.output_interval > scene.time.end_time) {
+    time.fail("output_interval", "longer than end_time", "an interval <= end_time (s)");
+  }
+  time.finish();
+
+  SectionReader initial = section("initial_stress", kInitialStressKeys);
+  scene.initial_stress = read_initial_stress(initial);
+
+  SectionReader reduction = section("strength_reduction", kStrengthReductionKeys);
+  scene.strength_reduction.factor =
+      reduction.number("factor", 1.0, positive("a strength reduction factor (-)"));
+  scene.strength_reduction.rule = reduction.choice("rule", {"tangent", "angle"}, "tangent");
+  reduction.finish();
+
+  // Materials first: bodies refer to them.
+  if (const toml::table* materials = r.table("material")) {
+    toml::table& resolved_materials = resolved_child(resolved, "material");
+    for (const auto& [k, v] : *materials) {
+      const std::string name(k.str());
+      scene.materials.push_back(read_material(name, v, scene.strength_reduction, source,
+                                              resolved_child(resolved_materials, name)));
+    }
+  }
+  scene.bodies = read_collection<Body>(r, "body", kBodyKeys, source, resolved,
+                                       [&](const std::string& name, SectionReader& b) {
+                                         return read_body(name, b, scene.materials);
+                                       });
+  if (scene.bodies.empty()) {
+    r.fail("body", "no body in the scene", "at least one [body.<name>] table");
+  }
+  scene.walls = read_collection<Wall>(r, "wall", kWallKeys, source, resolved, read_wall);
+  scene.rigid_bodies =
+      read_collection<RigidBody>(r, "rigid_body", kRigidKeys, source, resolved, read_rigid_body);
+  scene.loads = read_collection<Load>(r, "load", kLoadKeys, source, resolved, read_load);
+  for (Load& l : scene.loads) {
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      if (scene.bodies[b].name == l.body) l.body_index = static_cast<int>(b);
+    }
+  }
+  scene.measures =
+      read_collection<Measure>(r, "measure", kMeasureKeys, source, resolved, read_measure);
+  scene.references =
+      read_collection<Reference>(r, "reference", kReferenceKeys, source, resolved, read_reference);
+
+  SectionReader domain = section("domain", kDomainKeys);
+  fill_domain(scene, domain);
+
+  SectionReader sph = section("sph", kSphKeys);
+  scene.sph = read_sph(sph);
+  SectionReader spfem = section("spfem", kSpfemKeys);
+  scene.spfem = read_spfem(spfem);
+  SectionReader implicit(spfem.table("implicit"), "spfem.implicit", kImplicitKeys, source,
+                         resolved_child(resolved_child(resolved, "spfem"), "implicit"));
+  scene.spfem_implicit = read_implicit(implicit);
+
+  r.finish({"time", "domain", "initial_stress", "strength_reduction", "material", "body", "wall",
+            "rigid_body", "load", "measure", "reference", "sph", "spfem"});
+
+  std::ostringstream text;
+  text << "# " << scene.name << ": resolved scene (every default filled in)\n" << resolved << "\n";
+  scene.resolved_toml = text.str();
+  return scene;
+}
+
+}  // namespace
+
+Scene load_scene_from_string(const std::string& toml_text, const std::string& path,
+                             const std::vector<std::string>& overrides) {
+  SceneSource source;
+  source.file = path;
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path + ":" + std::to_string(e.source().begin.line) + ": " +
+                     std::string(e.description()) + "; expected valid TOML");
+  }
+  for (const std::string& o : overrides) apply_override(root, o, source);
+  Scene scene = read_scene(root, source);
+  validate_scene(scene, root, source);
+  return scene;
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path + ": cannot open the scene file; expected a readable TOML file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return load_scene_from_string(text.str(), path, overrides);
+}
+
+}  // namespace duet

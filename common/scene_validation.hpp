@@ -1,0 +1,26 @@
+#pragma once
+// Checks of a read scene that involve more than one table: geometry (bodies inside the domain,
+// no overlapping bodies, no rigid body inside soil, bodies supported or enclosed by walls) and
+// names (measure targets, reference measures, load bodies). Throws InputError
+// "FILE:LINE: key: problem; expected ...".
+
+#include <toml++/toml.h>
+
+#include "common/scene.hpp"
+#include "common/scene_schema.hpp"
+
+namespace duet {
+
+/// Rules:
+/// - every body lies inside the domain;
+/// - bodies do not overlap (they may touch along edges), and no rigid body overlaps a body;
+/// - under gravity, every body rests on something: the lowest point of its outline (the mean of
+///   its lowest vertices along g) lies within one spacing of a wall, a rigid body or a body that
+///   itself rests on something (no body floats free at t = 0, which would only be a fall);
+/// - with `confined = true`, every edge of every body has a wall or rigid body within one spacing
+///   of its midpoint (an oedometer sample must be closed on all sides);
+/// - measures name an existing target of the right kind, references an existing measure, loads
+///   an existing body.
+void validate_scene(const Scene& scene, const toml::table& root, const SceneSource& source);
+
+}  // namespace duet

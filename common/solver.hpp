@@ -1,0 +1,80 @@
+#pragma once
+// The interface a method (SPH, explicit SPFEM, implicit SPFEM) implements, and the registry that
+// names them. The driver (common/driver.hpp) owns the loop, the output and failure handling; a
+// solver only advances the particle state and reports the forces on walls and rigid bodies.
+
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/json.hpp"
+#include "common/particles.hpp"
+#include "common/tensor.hpp"
+#include "common/timers.hpp"
+
+namespace duet {
+
+struct Scene;
+
+/// Force that the soil exerts on a wall or a rigid body (N per metre of thickness), by name.
+struct Reaction {
+  std::string name;
+  Vec2 force = Vec2::Zero();
+};
+
+/// A numerical failure detected inside a solver step (Newton not converging after its step cuts,
+/// an inverted mesh cell, ...). The driver stops cleanly, keeps the frames and reports it.
+class NumericalFailure : public std::runtime_error {
+ public:
+  NumericalFailure(const std::string& reason, long particle = -1)
+      : std::runtime_error(reason), particle_(particle) {}
+  long particle() const { return particle_; }
+
+ private:
+  long particle_;
+};
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+
+  /// Set up from the scene and the sampled particles (walls, dummy particles, mesh, initial state).
+  /// The driver has already sampled the particles, set their internal variables to the models'
+  /// initial values and applied a geostatic initial stress when the scene asks for one.
+  virtual void initialise(const Scene& scene, Particles& particles) = 0;
+
+  /// Advance one step from `time`; returns the time step taken (s). Throws NumericalFailure.
+  virtual double step(const Scene& scene, Particles& particles, double time) = 0;
+
+  /// Current reaction on every wall and rigid body of the scene.
+  virtual std::vector<Reaction> reactions() const = 0;
+
+  /// Per-phase wall time so far (neighbours, constitutive, forces, mesh, solve, ...).
+  virtual const Timers& timers() const = 0;
+
+  /// Method-specific counters for metrics.json (penetrations, remeshes, Newton iterations, ...).
+  virtual Json diagnostics() const { return Json::object(); }
+};
+
+struct MethodInfo {
+  std::string name;     // "sph", "espfem", "ispfem"
+  std::string summary;  // one line
+  std::function<std::unique_ptr<Solver>(const Scene&)> make;
+};
+
+class MethodRegistry {
+ public:
+  void add(MethodInfo info) { methods_.push_back(std::move(info)); }
+  /// Throws InputError naming the registered methods when `name` is not one of them.
+  const MethodInfo& find(const std::string& name) const;
+  std::vector<std::string> names() const;
+  bool empty() const { return methods_.empty(); }
+
+ private:
+  std::vector<MethodInfo> methods_;
+};
+
+}  // namespace duet

@@ -1,0 +1,37 @@
+#pragma once
+// The XDMF 2 description of the particle frames in run.h5, so that ParaView (its "XDMF Reader")
+// opens run.xdmf directly: one temporal collection of Polyvertex grids, one per frame, whose
+// DataItems point at the HDF5 datasets "run.h5:/frames/NNNNNN/<field>".
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace duet {
+
+/// One point field of a frame (an HDF5 dataset of n rows and `components` columns).
+struct XdmfField {
+  std::string name;            // dataset name inside the frame group
+  std::string attribute_type;  // "Scalar" (1 column), "Vector" (3) or "Tensor" (9, row-major)
+  int components = 1;
+  std::string number_type = "Float";  // XDMF NumberType: "Float" or "Int"
+  int precision = 8;                  // bytes
+};
+
+struct XdmfFrame {
+  double time = 0.0;
+  std::string group;  // "/frames/000003"
+  std::size_t n_points = 0;
+  std::string geometry = "position";  // n x 3 dataset in the group
+  std::vector<XdmfField> fields;
+};
+
+/// The whole document for `frames`, whose datasets live in `h5_file_name` (relative to the .xdmf).
+std::string xdmf_document(const std::string& h5_file_name, const std::vector<XdmfFrame>& frames);
+
+/// Writes the document to `path` through a temporary file and a rename, so a reader (or a run
+/// that stops) never sees a half-written file. Throws std::runtime_error naming the path.
+void write_xdmf(const std::string& path, const std::string& h5_file_name,
+                const std::vector<XdmfFrame>& frames);
+
+}  // namespace duet

@@ -1,0 +1,70 @@
+#pragma once
+// SPH smoothing kernels in two dimensions (plane strain), both with support radius 2h:
+// the cubic spline (Peng 2015 eq 2) and the Wendland C2 kernel (simhypo-sand paper, eq 23).
+// value() and gradient() are inline: the pair loops call them for every neighbour pair.
+
+#include <string>
+
+#include "common/scene.hpp"
+#include "common/tensor.hpp"
+
+namespace duet::sph {
+
+/// The scene's [sph] kernel choice (parsed and checked by the scene loader).
+using KernelKind = SphKernel;
+
+std::string kernel_name(KernelKind kind);
+
+class Kernel {
+ public:
+  Kernel(KernelKind kind, double h);
+
+  KernelKind kind() const { return kind_; }
+  double smoothing_length() const { return h_; }
+  /// Radius of the compact support, 2h for both kernels.
+  double support_radius() const { return 2.0 * h_; }
+
+  /// W(r, h).
+  double value(double r) const {
+    const double q = r * inv_h_;
+    if (kind_ == KernelKind::cubic_spline) {
+      // Peng 2015 eq 2 (alpha_C = 10 / (7 pi h^2) in 2D)
+      if (q < 1.0) return alpha_ * (1.0 - 1.5 * q * q + 0.75 * q * q * q);
+      if (q < 2.0) return alpha_ * 0.25 * (2.0 - q) * (2.0 - q) * (2.0 - q);
+      return 0.0;
+    }
+    // simhypo-sand eq 23: W = alpha_d (1 - q/2)^4 (2q + 1)
+    if (q >= 2.0) return 0.0;
+    const double a = 1.0 - 0.5 * q;
+    return alpha_ * a * a * a * a * (2.0 * q + 1.0);
+  }
+
+  /// dW/dr (<= 0).
+  double derivative(double r) const {
+    const double q = r * inv_h_;
+    if (kind_ == KernelKind::cubic_spline) {
+      // d/dr of Peng 2015 eq 2
+      if (q < 1.0) return alpha_ * inv_h_ * (-3.0 * q + 2.25 * q * q);
+      if (q < 2.0) return -alpha_ * inv_h_ * 0.75 * (2.0 - q) * (2.0 - q);
+      return 0.0;
+    }
+    // d/dr of simhypo-sand eq 23: -5 q (1 - q/2)^3 alpha_d / h
+    if (q >= 2.0) return 0.0;
+    const double a = 1.0 - 0.5 * q;
+    return -5.0 * alpha_ * inv_h_ * q * a * a * a;
+  }
+
+  /// grad_i W_ij for r_ij = x_i - x_j with |r_ij| = r (zero at r = 0).
+  Vec2 gradient(const Vec2& r_ij, double r) const {
+    if (r <= 0.0) return Vec2::Zero();
+    return (derivative(r) / r) * r_ij;
+  }
+
+ private:
+  KernelKind kind_;
+  double h_;
+  double inv_h_;
+  double alpha_;  // 2D normalisation factor
+};
+
+}  // namespace duet::sph

@@ -1,0 +1,151 @@
+#include "sph/method.hpp"
+
+#include <memory>
+#include <optional>
+
+#include "common/geometry.hpp"
+#include "common/input_error.hpp"
+#include "common/scene.hpp"
+#include "constitutive/registry.hpp"
+#include "sph/sph_solver.hpp"
+
+namespace duet::sph {
+
+namespace {
+
+WallVelocity wall_velocity(const Wall& wall) {
+  if (wall.radial) {
+    // Radial wall (cavity): every point moves away from the centre at the scheduled speed.
+    return [schedule = wall.radial_velocity, centre = wall.centre](double t, const Vec2& x) {
+      const Vec2 r = x - centre;
+      const double d = r.norm();
+      return d > 0.0 ? Vec2(schedule_value(schedule, t).x() / d * r) : Vec2(Vec2::Zero());
+    };
+  }
+  if (wall.velocity.empty()) return {};
+  return [schedule = wall.velocity](double t, const Vec2&) { return schedule_value(schedule, t); };
+}
+
+SphSetup make_setup(const Scene& scene) {
+  if (scene.sph.wall_treatment != "dummy") {
+    throw InputError("sph.wall_treatment = \"" + scene.sph.wall_treatment +
+                     "\": the SPH solver implements \"dummy\" only");
+  }
+  SphSetup setup;
+  setup.options = scene.sph;
+  setup.spacing = scene.spacing;
+  setup.gravity = scene.gravity;
+  for (const Material& m : scene.materials) {
+    setup.models.push_back(constitutive::make_model(m.model, m.parameters, "material." + m.name));
+  }
+  for (const Wall& w : scene.walls) {
+    setup.walls.push_back({w.name, w.points, w.condition, wall_velocity(w)});
+  }
+  for (const RigidBody& b : scene.rigid_bodies) {
+    if (b.surface == Surface::friction) {
+      throw InputError("rigid_body." + b.name +
+                       ".surface = \"friction\": the frictional contact of simhypo-sand eqs "
+                       "39-40 is not implemented in the SPH solver yet (use rough or smooth)");
+    }
+    // A rigid body with prescribed motion: its closed outline as a wall, rough = dummy particles
+    // (no slip), smooth = ghost particles (free slip).
+    std::vector<Vec2> outline = b.outline;
+    outline.push_back(outline.front());
+    WallVelocity velocity;
+    if (!b.velocity.empty()) {
+      velocity = [schedule = b.velocity](double t, const Vec2&) {
+        return schedule_value(schedule, t);
+      };
+    }
+    setup.walls.push_back(
+        {b.name, std::move(outline),
+         b.surface == Surface::smooth ? WallCondition::free_slip : WallCondition::no_slip,
+         std::move(velocity)});
+  }
+  return setup;
+}
+
+class SphMethod final : public Solver {
+ public:
+  explicit SphMethod(const Scene& scene) : solver_(make_setup(scene)) {}
+
+  void initialise(const Scene& scene, Particles& particles) override {
+    solver_.initialise(particles);
+    // Loads: each shared equally by the particles of its body initially inside its box.
+    loaded_.assign(scene.loads.size(), {});
+    for (std::size_t l = 0; l < scene.loads.size(); ++l) {
+      const Load& load = scene.loads[l];
+      for (std::size_t i = 0; i < particles.size(); ++i) {
+        const Vec2& x = particles.position[i];
+        if (particles.body[i] == load.body_index && (x.array() >= load.min.array()).all() &&
+            (x.array() <= load.max.array()).all()) {
+          loaded_[l].push_back(i);
+        }
+      }
+      if (loaded_[l].empty()) {
+        throw InputError("load." + load.name + ": no particle of body " + load.body +
+                         " lies in its box");
+      }
+    }
+    if (scene.initial_stress.kind == InitialStressKind::gravity_loading) {
+      apply_loads(scene, 0.0);
+      solver_.settle(particles, scene.initial_stress.time, scene.initial_stress.damping);
+    }
+  }
+
+  double step(const Scene& scene, Particles& particles, double time) override {
+    apply_loads(scene, time);
+    return solver_.step(particles, time);
+  }
+
+  std::vector<Reaction> reactions() const override {
+    std::vector<Reaction> out;
+    for (std::size_t w = 0; w < solver_.walls().size(); ++w) {
+      out.push_back({solver_.walls()[w].name, solver_.wall_forces()[w]});
+    }
+    return out;
+  }
+
+  const Timers& timers() const override { return solver_.timers(); }
+
+  Json diagnostics() const override {
+    const SphCounters& c = solver_.counters();
+    Json j = Json::object();
+    j["kernel"] = kernel_name(solver_.kernel().kind());
+    j["smoothing_length"] = solver_.kernel().smoothing_length();
+    j["dummy_particles"] = static_cast<long>(c.dummy_particles);
+    j["ghost_particles_max"] = static_cast<long>(c.ghost_particles_max);
+    j["neighbours_max"] = static_cast<long>(c.neighbours_max);
+    j["penetrations_max"] = c.penetrations_max;
+    j["penetrations_total"] = c.penetrations_total;
+    j["penetrations_last_step"] = c.penetrations_last_step;
+    j["dt_min"] = c.dt_min;
+    j["dt_max"] = c.dt_max;
+    j["steps"] = c.steps;
+    return j;
+  }
+
+ private:
+  void apply_loads(const Scene& scene, double time) {
+    auto& force = solver_.external_force();
+    std::fill(force.begin(), force.end(), Vec2::Zero());
+    for (std::size_t l = 0; l < scene.loads.size(); ++l) {
+      const Vec2 share =
+          schedule_value(scene.loads[l].force, time) / static_cast<double>(loaded_[l].size());
+      for (const std::size_t i : loaded_[l]) force[i] += share;
+    }
+  }
+
+  SphSolver solver_;
+  std::vector<std::vector<std::size_t>> loaded_;
+};
+
+}  // namespace
+
+void register_sph(MethodRegistry& registry) {
+  registry.add({"sph",
+                "smoothed particle hydrodynamics for soils (Peng et al. 2015; Bui et al. 2008)",
+                [](const Scene& scene) { return std::make_unique<SphMethod>(scene); }});
+}
+
+}  // namespace duet::sph

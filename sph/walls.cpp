@@ -1,0 +1,136 @@
+#include "sph/walls.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace duet::sph {
+
+namespace {
+
+Vec2 left_normal(const Vec2& a, const Vec2& b) {
+  const Vec2 t = (b - a).normalized();
+  return Vec2(-t.y(), t.x());
+}
+
+}  // namespace
+
+WallGeometry orient_wall(const WallSpec& wall, std::span<const Vec2> soil, double reach) {
+  if (wall.polyline.size() < 2) {
+    throw std::invalid_argument("wall " + wall.name + ": a polyline needs at least two points");
+  }
+  WallGeometry geometry;
+  geometry.points = wall.polyline;
+  for (std::size_t s = 0; s + 1 < geometry.points.size(); ++s) {
+    const Vec2 a = geometry.points[s];
+    const Vec2 b = geometry.points[s + 1];
+    if ((b - a).norm() <= 0.0) {
+      throw std::invalid_argument("wall " + wall.name + ": repeated point in polyline");
+    }
+    const Vec2 n = left_normal(a, b);
+    const Vec2 t = (b - a).normalized();
+    const double length = (b - a).norm();
+    int left = 0;
+    int right = 0;
+    for (const Vec2& x : soil) {
+      const double u = (x - a).dot(t);
+      const double d = (x - a).dot(n);
+      if (u < 0.0 || u > length || std::abs(d) > reach) continue;
+      (d >= 0.0 ? left : right) += 1;
+    }
+    geometry.side.push_back(right > left ? -1 : 1);
+    geometry.normals.push_back(right > left ? Vec2(-n) : n);
+  }
+  geometry.point_velocity.assign(geometry.points.size(), Vec2::Zero());
+  return geometry;
+}
+
+void update_normals(WallGeometry& wall) {
+  for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
+    wall.normals[s] = wall.side[s] * left_normal(wall.points[s], wall.points[s + 1]);
+  }
+}
+
+double signed_distance(const WallGeometry& wall, std::size_t segment, const Vec2& x,
+                       bool* projects_inside) {
+  const Vec2 a = wall.points[segment];
+  const Vec2 b = wall.points[segment + 1];
+  if (projects_inside) {
+    const Vec2 t = b - a;
+    const double u = (x - a).dot(t) / t.squaredNorm();
+    *projects_inside = u >= 0.0 && u <= 1.0;
+  }
+  return (x - a).dot(wall.normals[segment]);
+}
+
+std::vector<Vec2> dummy_particles(const WallGeometry& wall, double dp, int layers) {
+  std::vector<Vec2> out;
+  const double extension = layers * dp;
+  for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
+    const Vec2 a = wall.points[s];
+    const Vec2 b = wall.points[s + 1];
+    const Vec2 t = (b - a).normalized();
+    const Vec2 n = wall.normals[s];
+    const double length = (b - a).norm();
+    // Rows start half a spacing in from each end so soil sampled on the same lattice lines up.
+    const int n_along = static_cast<int>(std::floor((length + 2.0 * extension) / dp + 1e-9));
+    const double start = -extension + 0.5 * ((length + 2.0 * extension) - n_along * dp) + 0.5 * dp;
+    for (int k = 1; k <= layers; ++k) {
+      for (int m = 0; m < n_along; ++m) {
+        const Vec2 x = a + (start + m * dp) * t - (k - 0.5) * dp * n;
+        bool keep = true;
+        // A corner point behind one segment may be in front of its neighbour: keep only points
+        // that are behind (or level with) every segment they project onto.
+        for (std::size_t o = 0; o + 1 < wall.points.size() && keep; ++o) {
+          bool inside = false;
+          const double d = signed_distance(wall, o, x, &inside);
+          if (inside && d > 0.0 && d < extension) keep = false;
+        }
+        for (const Vec2& y : out) {
+          if (!keep) break;
+          if ((y - x).squaredNorm() < 0.25 * dp * dp) keep = false;
+        }
+        if (keep) out.push_back(x);
+      }
+    }
+  }
+  return out;
+}
+
+bool behind_wall(const WallGeometry& wall, const Vec2& x, double depth) {
+  for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
+    bool inside = false;
+    const double d = signed_distance(wall, s, x, &inside);
+    if (inside && d < 0.0 && d > -depth) return true;
+  }
+  return false;
+}
+
+void append_ghost_particles(const WallGeometry& wall, std::int32_t wall_index,
+                            std::span<const Vec2> soil_position,
+                            std::span<const Vec2> soil_velocity, double reach,
+                            std::vector<Vec2>& position, std::vector<Vec2>& velocity,
+                            std::vector<std::int32_t>& wall_of, std::vector<std::int32_t>& source,
+                            std::vector<Vec2>& normal) {
+  for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
+    const Vec2 n = wall.normals[s];
+    const Vec2 a = wall.points[s];
+    const Vec2 t = wall.points[s + 1] - a;
+    for (std::size_t i = 0; i < soil_position.size(); ++i) {
+      bool inside = false;
+      const double d = signed_distance(wall, s, soil_position[i], &inside);
+      if (!inside || d < 0.0 || d >= reach) continue;
+      const double u = (soil_position[i] - a).dot(t) / t.squaredNorm();
+      const Vec2 v_wall = (1.0 - u) * wall.point_velocity[s] + u * wall.point_velocity[s + 1];
+      // Peng 2015 section 4.2: ghost mirrored across the wall, tangential velocity kept and the
+      // normal velocity (relative to the wall) reversed.
+      const Vec2 relative = soil_velocity[i] - v_wall;
+      position.push_back(soil_position[i] - 2.0 * d * n);
+      velocity.push_back(v_wall + relative - 2.0 * relative.dot(n) * n);
+      wall_of.push_back(wall_index);
+      source.push_back(static_cast<std::int32_t>(i));
+      normal.push_back(n);
+    }
+  }
+}
+
+}  // namespace duet::sph

@@ -1,0 +1,74 @@
+#pragma once
+// Wall treatment of the SPH solver (Peng 2015 section 4.2): walls are polylines; a no-slip wall
+// is represented by layers of dummy particles behind it (three by default) that move with the
+// wall's prescribed velocity; a free-slip wall by ghost particles, the mirror images of the soil
+// particles within 2h of it, with the normal velocity reversed. Which side of a wall segment is
+// the soil side is found once, from the soil particles near the segment.
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/scene.hpp"
+#include "common/tensor.hpp"
+
+namespace duet::sph {
+
+/// Prescribed velocity (m/s) of the wall point x at time t: a translation ignores x, a radially
+/// expanding wall (cavity) points away from its centre.
+using WallVelocity = std::function<Vec2(double t, const Vec2& x)>;
+
+/// A wall or rigid body boundary as the solver sees it.
+struct WallSpec {
+  std::string name;
+  std::vector<Vec2> polyline;  // m; >= 2 points; a closed outline repeats its first point
+  WallCondition condition = WallCondition::no_slip;
+  WallVelocity velocity;  // empty: fixed
+};
+
+/// A wall's current geometry: the polyline moved with its prescribed velocity, per segment the
+/// unit normal pointing into the soil (side: +1 when that is the left normal, -1 otherwise), and
+/// the velocity of every polyline point.
+struct WallGeometry {
+  std::vector<Vec2> points;
+  std::vector<int> side;
+  std::vector<Vec2> normals;
+  std::vector<Vec2> point_velocity;
+};
+
+/// Recomputes the normals after the points moved (keeping each segment's side).
+void update_normals(WallGeometry& wall);
+
+/// Segment normals towards the side holding more soil particles within `reach` of the segment
+/// (the left normal when no soil is near).
+WallGeometry orient_wall(const WallSpec& wall, std::span<const Vec2> soil, double reach);
+
+/// Signed distance of x from segment s (positive on the soil side) and whether x projects onto
+/// the segment (parameter in [0, 1]).
+double signed_distance(const WallGeometry& wall, std::size_t segment, const Vec2& x,
+                       bool* projects_inside = nullptr);
+
+/// Dummy particles in `layers` rows at (k - 1/2) dp behind every segment, spaced dp along it,
+/// rows extended by layers * dp past the polyline's ends and joints so corners are filled;
+/// duplicates closer than dp/2 are dropped.
+std::vector<Vec2> dummy_particles(const WallGeometry& wall, double dp, int layers);
+
+/// True when x lies behind a segment of the wall, within `depth` of it (a soil particle that has
+/// penetrated the wall).
+bool behind_wall(const WallGeometry& wall, const Vec2& x, double depth);
+
+/// Ghost particles of a free-slip wall, appended to the output arrays: for every soil particle
+/// within `reach` in front of a segment, its mirror image across the segment line, with the
+/// normal component of its velocity (relative to the wall, whose velocity is interpolated
+/// between the segment's end points) reversed. `source` gets the soil
+/// particle's index and `normal` the segment normal (to mirror tensors: R = I - 2 n n^T).
+void append_ghost_particles(const WallGeometry& wall, std::int32_t wall_index,
+                            std::span<const Vec2> soil_position,
+                            std::span<const Vec2> soil_velocity, double reach,
+                            std::vector<Vec2>& position, std::vector<Vec2>& velocity,
+                            std::vector<std::int32_t>& wall_of, std::vector<std::int32_t>& source,
+                            std::vector<Vec2>& normal);
+
+}  // namespace duet::sph

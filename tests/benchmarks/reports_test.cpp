@@ -1,0 +1,84 @@
+// compare.csv / compare.md and the --target choice (benchmarks/reports.cpp, run_summary.cpp).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "benchmarks/reports.hpp"
+#include "benchmarks/run_summary.hpp"
+
+namespace duet {
+namespace {
+
+RunSummary make_run(const std::string& method, double spacing, double error, double seconds,
+                    const std::string& status = "completed") {
+  RunSummary r;
+  r.scene = "collapse";
+  r.method = method;
+  r.spacing = spacing;
+  r.particles = static_cast<long>(0.02 / (spacing * spacing));
+  r.steps = 1000;
+  r.wall_seconds = seconds;
+  r.status = status;
+  if (status == "completed") {
+    r.accuracy["runout"] = {0.36 * (1 + error), 0.36, error, "Lube et al. as quoted by Peng 2015"};
+    r.measures["runout"] = 0.36 * (1 + error);
+  } else {
+    r.failure_reason = "non-finite stress";
+    r.failure_time = 0.1;
+  }
+  return r;
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+TEST(TargetChoice, PicksCoarsestSpacingWhoseErrorsAreAllBelowTarget) {
+  const std::vector<RunSummary> runs = {make_run("sph", 0.005, 0.20, 1.0),
+                                        make_run("sph", 0.0035, 0.04, 3.0),
+                                        make_run("sph", 0.0025, 0.02, 9.0)};
+  const auto choices = choose_for_target(runs, 0.05);
+  ASSERT_EQ(choices.size(), 1u);
+  ASSERT_TRUE(choices[0].run.has_value());
+  EXPECT_DOUBLE_EQ(choices[0].run->spacing, 0.0035);
+}
+
+TEST(TargetChoice, FailedRunNeverMeetsTarget) {
+  const std::vector<RunSummary> runs = {make_run("espfem", 0.005, 0.0, 1.0, "failed"),
+                                        make_run("espfem", 0.0025, 0.10, 4.0)};
+  const auto choices = choose_for_target(runs, 0.05);
+  ASSERT_EQ(choices.size(), 1u);
+  EXPECT_FALSE(choices[0].run.has_value());
+}
+
+TEST(CompareCsv, FailedRunsAppearWithTheirReason) {
+  const auto dir = std::filesystem::temp_directory_path() / "duet_reports_test";
+  std::filesystem::create_directories(dir);
+  const std::vector<RunSummary> runs = {make_run("sph", 0.005, 0.1, 1.0),
+                                        make_run("espfem", 0.005, 0.0, 0.5, "failed")};
+  write_compare_csv((dir / "compare.csv").string(), runs);
+  const std::string csv = read_file(dir / "compare.csv");
+  std::istringstream lines(csv);
+  std::string header, first, second;
+  std::getline(lines, header);
+  std::getline(lines, first);
+  std::getline(lines, second);
+  EXPECT_NE(header.find("accuracy.runout.rel_error"), std::string::npos);
+  EXPECT_NE(first.find("sph,0.005"), std::string::npos);
+  EXPECT_NE(second.find("failed,non-finite stress,0.1"), std::string::npos);
+}
+
+TEST(CompareMarkdown, ReportsTargetChoicePerMethod) {
+  const std::vector<RunSummary> runs = {make_run("sph", 0.005, 0.2, 1.0),
+                                        make_run("sph", 0.0025, 0.01, 5.0)};
+  const std::string md = compare_markdown(runs, 0.05);
+  EXPECT_NE(md.find("- sph: spacing 0.0025 m"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace duet

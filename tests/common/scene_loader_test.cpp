@@ -1,0 +1,237 @@
+// The scene loader: defaults, --set overrides (type-checked like the file), messages that name
+// the file, the line, the key and what was expected, and every bad scene under
+// tests/data/bad-scenes refused with its expected message.
+#include "common/scene_loader.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "common/input_error.hpp"
+#include "constitutive/registry.hpp"
+
+namespace duet {
+namespace {
+
+const std::string kScene = R"(name = "column"
+spacing = 0.01
+gravity = [0.0, -9.81]
+
+[time]
+end_time = 0.5
+
+[material.sand]
+model = "linear-elastic"
+density = 1800.0
+E = 1.0e6
+nu = 0.3
+
+[body.column]
+material = "sand"
+min = [0.0, 0.0]
+max = [0.2, 0.1]
+
+[wall.floor]
+points = [[0.0, 0.0], [0.6, 0.0]]
+)";
+
+/// The message of the InputError that loading throws ("" when it loads).
+std::string refusal(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    load_scene_from_string(text, "scene.toml", overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneLoader, FillsEveryDefaultFromThePapers) {
+  const Scene s = load_scene_from_string(kScene, "scene.toml");
+  EXPECT_EQ(s.name, "column");
+  EXPECT_DOUBLE_EQ(s.time.output_interval, 0.5 / 50);
+  EXPECT_EQ(s.initial_stress.kind, InitialStressKind::none);
+  EXPECT_DOUBLE_EQ(s.sph.h_over_dp, std::sqrt(2.0));  // Peng 2015 section 5
+  EXPECT_DOUBLE_EQ(s.sph.alpha, 1.0);
+  EXPECT_DOUBLE_EQ(s.sph.beta, 0.1);
+  EXPECT_EQ(s.sph.dummy_layers, 3);
+  EXPECT_EQ(s.walls[0].condition, WallCondition::no_slip);
+  EXPECT_TRUE(s.walls[0].velocity.empty());
+  EXPECT_DOUBLE_EQ(s.spfem.alpha_factor, 1.5);
+  EXPECT_EQ(s.spfem_implicit.max_iterations, 20);
+  EXPECT_EQ(s.bodies[0].material_index, 0);
+}
+
+TEST(SceneLoader, GravityDefaultsToZero) {
+  std::string text = kScene;
+  text.replace(text.find("gravity = [0.0, -9.81]\n"), 24, "");
+  EXPECT_EQ(load_scene_from_string(text, "scene.toml").gravity, Vec2::Zero());
+}
+
+TEST(SceneLoader, DefaultDomainIsThePaddedBoundingBoxOfEverything) {
+  const Scene s = load_scene_from_string(kScene, "scene.toml");
+  // Everything spans [0, 0.6] x [0, 0.1]; padding a quarter of 0.6.
+  EXPECT_DOUBLE_EQ(s.domain.padding, 0.15);
+  EXPECT_NEAR(s.domain.min.x(), -0.15, 1e-15);
+  EXPECT_NEAR(s.domain.max.x(), 0.75, 1e-15);
+  EXPECT_NEAR(s.domain.max.y(), 0.25, 1e-15);
+}
+
+TEST(SceneLoader, OverrideReplacesAValueByDottedPath) {
+  const Scene s = load_scene_from_string(
+      kScene, "scene.toml", {"spacing=0.005", "material.sand.nu=0.25", "sph.alpha=0.5"});
+  EXPECT_DOUBLE_EQ(s.spacing, 0.005);
+  EXPECT_DOUBLE_EQ(std::get<double>(s.materials[0].parameters.at("nu")), 0.25);
+  EXPECT_DOUBLE_EQ(s.sph.alpha, 0.5);
+}
+
+TEST(SceneLoader, OverrideTakesABareWordAsAString) {
+  const Scene s = load_scene_from_string(kScene, "scene.toml", {"sph.kernel=wendland-c2"});
+  EXPECT_EQ(s.sph.kernel, SphKernel::wendland_c2);
+}
+
+TEST(SceneLoader, OverrideIsTypeCheckedLikeTheFile) {
+  EXPECT_EQ(refusal(kScene, {"spacing=fine"}),
+            "--set spacing=fine: spacing: wrong type: a string; expected a number");
+}
+
+TEST(SceneLoader, OverrideOfAnUnknownKeySuggestsTheKnownOne) {
+  const std::string message = refusal(kScene, {"sph.alpah=1"});
+  EXPECT_NE(message.find("--set sph.alpah=1: sph.alpah: unknown key (did you mean 'alpha'?)"),
+            std::string::npos)
+      << message;
+}
+
+TEST(SceneLoader, OverrideOfAnUnknownMaterialSuggestsTheKnownOne) {
+  EXPECT_EQ(refusal(kScene, {"material.snad.nu=0.2"}),
+            "--set material.snad.nu=0.2: material.snad: no material named 'snad' (did you mean "
+            "'sand'?); expected one of sand");
+}
+
+TEST(SceneLoader, OverrideOfAModelParameterIsCheckedByTheModel) {
+  const std::string message = refusal(kScene, {"material.sand.nu=0.62"});
+  EXPECT_NE(message.find("material.sand.nu = 0.62: Poisson's ratio must lie in [0, 0.5)"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(message.rfind("--set material.sand.nu=0.62: ", 0), 0u) << message;
+}
+
+TEST(SceneLoader, UnknownKeyNamesFileLineKeyAndSuggestion) {
+  std::string text = kScene;
+  text.replace(text.find("min = [0.0, 0.0]"), 16, "mni = [0.0, 0.0]");
+  const std::string message = refusal(text);
+  EXPECT_EQ(message.rfind("scene.toml:16: body.column.mni: unknown key (did you mean 'min'?); "
+                          "expected one of ",
+                          0),
+            0u)
+      << message;
+}
+
+TEST(SceneLoader, KeyThatDoesNotApplyToTheShapeIsRefused) {
+  // Appended at the end, vertices lands in [wall.floor]: not a wall key at all.
+  const std::string text = kScene + "vertices = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]\n";
+  EXPECT_NE(refusal(text).find("wall.floor.vertices: unknown key"), std::string::npos);
+  std::string rectangle_with_vertices = kScene;
+  rectangle_with_vertices.replace(rectangle_with_vertices.find("min = [0.0, 0.0]"), 16,
+                                  "shape = \"rectangle\"\nvertices = [[0, 0], [1, 0], [0, 1]]\n"
+                                  "min = [0.0, 0.0]");
+  EXPECT_NE(refusal(rectangle_with_vertices).find("body.column.vertices: does not apply"),
+            std::string::npos);
+}
+
+TEST(SceneLoader, ClockwisePolygonIsReorderedCounterClockwise) {
+  std::string text = kScene;
+  text.replace(text.find("min = [0.0, 0.0]\nmax = [0.2, 0.1]"), 33,
+               "vertices = [[0.0, 0.0], [0.0, 0.1], [0.2, 0.1], [0.2, 0.0]]");
+  const Scene s = load_scene_from_string(text, "scene.toml");
+  ASSERT_EQ(s.bodies[0].shape, ShapeKind::polygon);
+  const auto& v = s.bodies[0].outline;
+  double twice_area = 0.0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec2& a = v[i];
+    const Vec2& b = v[(i + 1) % v.size()];
+    twice_area += a.x() * b.y() - a.y() * b.x();
+  }
+  EXPECT_NEAR(0.5 * twice_area, 0.02, 1e-15);
+}
+
+TEST(SceneLoader, ResolvedTomlLoadsBackToTheSameScene) {
+  const Scene s = load_scene_from_string(kScene, "scene.toml", {"sph.alpha=0.7"});
+  const Scene again = load_scene_from_string(s.resolved_toml, "resolved.toml");
+  EXPECT_DOUBLE_EQ(again.spacing, s.spacing);
+  EXPECT_DOUBLE_EQ(again.sph.alpha, 0.7);
+  EXPECT_DOUBLE_EQ(again.time.output_interval, s.time.output_interval);
+  EXPECT_EQ(again.domain.min, s.domain.min);
+  EXPECT_EQ(again.bodies[0].outline, s.bodies[0].outline);
+  EXPECT_EQ(again.resolved_toml.substr(again.resolved_toml.find('\n')),
+            s.resolved_toml.substr(s.resolved_toml.find('\n')));
+}
+
+TEST(SceneLoader, StrengthReductionDividesCohesionAndTangentOfFriction) {
+  const auto& names = constitutive::builtin_models().names();
+  if (std::find(names.begin(), names.end(), "drucker-prager") == names.end()) {
+    GTEST_SKIP() << "model 'drucker-prager' is not registered yet";
+  }
+  std::string text = kScene;
+  text.replace(text.find("model = \"linear-elastic\""), 24,
+               "model = \"drucker-prager\"\nphi = 20.0\npsi = 0.0\nc = 10.0e3");
+  const Scene s = load_scene_from_string(text, "scene.toml", {"strength_reduction.factor=1.4"});
+  const double deg = std::numbers::pi / 180.0;
+  // Peng 2015 eq 39: c / f; Griffiths & Lane: tan(phi_f) = tan(phi) / f.
+  EXPECT_NEAR(std::get<double>(s.materials[0].parameters.at("c")), 10.0e3 / 1.4, 1e-9);
+  EXPECT_NEAR(std::tan(std::get<double>(s.materials[0].parameters.at("phi")) * deg),
+              std::tan(20.0 * deg) / 1.4, 1e-12);
+}
+
+// Every bad scene: refused with InputError whose message starts with the file's path and
+// contains the fragment of its first line "# expect: ...".
+std::string expected_fragment(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string first;
+  std::getline(in, first);
+  const std::string tag = "# expect: ";
+  return first.rfind(tag, 0) == 0 ? first.substr(tag.size()) : "";
+}
+
+TEST(SceneLoader, EveryBadSceneIsRefusedWithItsExpectedMessage) {
+  const std::filesystem::path folder =
+      std::filesystem::path(DUET_SOURCE_DIR) / "tests/data/bad-scenes";
+  int n_files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    if (entry.path().extension() != ".toml") continue;
+    ++n_files;
+    const std::string fragment = expected_fragment(entry.path());
+    ASSERT_FALSE(fragment.empty()) << entry.path() << " lacks its '# expect: ' first line";
+    std::string message;
+    try {
+      load_scene(entry.path().string());
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find(fragment), std::string::npos)
+        << entry.path().filename() << "\n  expected: " << fragment << "\n  got:      " << message;
+    // FILE:LINE: (or FILE: for a key missing at the top level)
+    EXPECT_EQ(message.rfind(entry.path().string() + ":", 0), 0u) << message;
+  }
+  EXPECT_GE(n_files, 10);
+}
+
+TEST(SceneLoader, BadSceneMessagesCarryTheLineOfTheOffendingKey) {
+  const std::filesystem::path file =
+      std::filesystem::path(DUET_SOURCE_DIR) / "tests/data/bad-scenes/bad-parameter.toml";
+  std::string message;
+  try {
+    load_scene(file.string());
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  // Line 14 of the file: "nu = 0.62" (two comment lines, then the base scene).
+  EXPECT_EQ(message.rfind(file.string() + ":14: material.sand.nu = 0.62", 0), 0u) << message;
+}
+
+}  // namespace
+}  // namespace duet
