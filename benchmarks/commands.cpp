@@ -55,7 +55,8 @@ std::vector<std::string> with_spacing(std::vector<std::string> overrides, double
 
 void plot(const std::string& script, const std::vector<std::string>& arguments) {
   std::string why;
-  if (!run_plot_script(script, arguments, &why)) std::cerr << "duet: chart skipped: " << why << '\n';
+  if (!run_plot_script(script, arguments, &why))
+    std::cerr << "duet: chart skipped: " << why << '\n';
 }
 
 struct RunArgs {
@@ -107,8 +108,7 @@ struct CompareArgs {
 
 void add_compare_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<CompareArgs>();
-  CLI::App* cmd =
-      app.add_subcommand("compare", "run a scene through several methods and spacings");
+  CLI::App* cmd = app.add_subcommand("compare", "run a scene through several methods and spacings");
   cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
   cmd->add_option("--methods", args->methods, "comma-separated (default: every registered one)");
   cmd->add_option("--spacings", args->spacings, "comma-separated spacings (default: the scene's)");
@@ -127,8 +127,10 @@ void add_compare_command(CLI::App& app, int& exit_code) {
     std::vector<const MethodInfo*> methods;
     for (const auto& name : method_names) methods.push_back(&builtin_methods().find(name));
     std::vector<Scene> scenes;
-    for (double dp : spacings) scenes.push_back(load_scene(args->scene, with_spacing(args->sets, dp)));
-    if (args->target < 0.0) throw InputError("--target must be positive (relative error, e.g. 0.05)");
+    for (double dp : spacings)
+      scenes.push_back(load_scene(args->scene, with_spacing(args->sets, dp)));
+    if (args->target < 0.0)
+      throw InputError("--target must be positive (relative error, e.g. 0.05)");
 
     const std::string out = args->out.empty() ? "runs/compare-" + base.name : args->out;
     std::filesystem::create_directories(out);
@@ -209,7 +211,8 @@ void add_stability_command(CLI::App& app, int& exit_code) {
     std::vector<StabilityCell> cells;
     for (std::size_t i = 0; i < grid.size(); ++i) {
       std::string name;
-      for (const auto& [key, value] : grid[i]) name += (name.empty() ? "" : "_") + key + "=" + value;
+      for (const auto& [key, value] : grid[i])
+        name += (name.empty() ? "" : "_") + key + "=" + value;
       RunOptions options;
       options.out_dir = out + "/" + name;
       std::cerr << "duet: stability cell " << name << '\n';
@@ -226,8 +229,9 @@ void add_stability_command(CLI::App& app, int& exit_code) {
 void add_demo_command(CLI::App& app, int& exit_code) {
   auto out = std::make_shared<std::string>("runs/demo");
   CLI::App* cmd = app.add_subcommand(
-      "demo", "the default demonstration: the coarse collapse comparison once a solver is "
-              "registered, else the element tests of every soil model");
+      "demo",
+      "the default demonstration: the coarse collapse comparison once a solver is "
+      "registered, else the element tests of every soil model");
   cmd->add_option("--out", *out, "output folder (default runs/demo)");
   cmd->callback([out, &exit_code] {
     if (builtin_methods().empty()) {
@@ -236,7 +240,8 @@ void add_demo_command(CLI::App& app, int& exit_code) {
       exit_code = run_element_demo(*out);
       return;
     }
-    const std::string scene_path = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
+    const std::string scene_path =
+        std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
     const Scene scene = load_scene(scene_path, {"spacing=0.005"});
     std::vector<RunSummary> runs;
     for (const auto& name : builtin_methods().names()) {

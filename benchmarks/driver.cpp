@@ -1,11 +1,11 @@
 #include "benchmarks/driver.hpp"
 
+#include <unistd.h>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <optional>
-#include <unistd.h>
 
 #include "benchmarks/git_commit.hpp"
 #include "benchmarks/material_points.hpp"
@@ -36,7 +36,8 @@ Json failure_json(const Failure& f) {
   j["reason"] = f.reason;
   j["time"] = f.time;
   j["particle"] = f.particle;
-  if (f.particle >= 0) j["position"] = Json::array(std::vector<double>{f.position.x(), f.position.y()});
+  if (f.particle >= 0)
+    j["position"] = Json::array(std::vector<double>{f.position.x(), f.position.y()});
   return j;
 }
 
@@ -70,7 +71,8 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     writer.write_frame(time, particles);
   }
   measures.sample(time, particles, solver->reactions());
-  Progress progress(end_time, std::cerr, options.show_progress && isatty(2));
+  std::optional<Progress> progress;
+  if (options.show_progress) progress.emplace(end_time, std::cerr, isatty(2) != 0);
   double next_output = output_interval;
   double next_sample = sample_interval;
 
@@ -100,7 +102,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       writer.write_series(measures.names(), measures.columns());
       next_output += output_interval;
     }
-    progress.update(time, steps);
+    if (progress) progress->update(time, steps);
   }
   // The last state (or the state at failure) is always a frame.
   {
@@ -109,9 +111,10 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   }
   if (!failure) measures.sample(time, particles, solver->reactions());
   writer.write_series(measures.names(), measures.columns());
-  progress.finish(failure ? "failed: " + failure->reason : "completed");
+  if (progress) progress->finish(failure ? "failed: " + failure->reason : "completed");
 
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Json metrics = Json::object();
   metrics["scene"] = scene.name;
   metrics["method"] = method.name;

@@ -10,8 +10,8 @@ namespace duet {
 std::vector<std::unique_ptr<constitutive::Model>> build_models(const Scene& scene) {
   std::vector<std::unique_ptr<constitutive::Model>> models;
   for (const auto& material : scene.materials) {
-    models.push_back(constitutive::make_model(material.model, material.parameters,
-                                              "material." + material.name));
+    models.push_back(
+        constitutive::make_model(material.model, material.parameters, "material." + material.name));
   }
   return models;
 }

@@ -245,9 +245,9 @@ void check_sizes(const Particles& p, const std::string& path) {
 }
 
 const char* const builtin_fields[] = {
-    "position", "velocity",  "displacement",     "stress", "strain",
-    "mass",     "volume",    "density",          "body",   "material",
-    "pressure", "von_mises", "equivalent_strain"};
+    "position", "velocity",  "displacement",      "stress",  "strain",
+    "mass",     "volume",    "density",           "body",    "material",
+    "pressure", "von_mises", "equivalent_strain", "vertices"};
 
 /// Dataset name of an internal variable: its name, prefixed when it would clash with a field.
 std::string internal_dataset_name(const std::string& name) {
@@ -417,6 +417,9 @@ void RunWriter::write_frame(double time, const Particles& particles) {
     frame.fields.push_back({field, "Scalar", 1, "Int", 4});
   };
 
+  std::vector<std::int32_t> vertices(n);
+  for (std::size_t i = 0; i < n; ++i) vertices[i] = static_cast<std::int32_t>(i);
+  write_dataset(g, frame.vertices, vertices, n, 0, h5_path_);
   vector3("position", particles.position);
   vector3("velocity", particles.velocity);
   frame.fields.push_back({"velocity", "Vector", 3, "Float", 8});
@@ -512,7 +515,7 @@ Frame read_frame(const std::string& path, std::size_t index) {
     link.resize(static_cast<std::size_t>(length));
     std::vector<hsize_t> dims;
     std::vector<double> values = read_doubles(group.get(), link, path, &dims);
-    if (dims.size() == 1) frame.scalars.emplace(link, std::move(values));
+    if (dims.size() == 1 && link != "vertices") frame.scalars.emplace(link, std::move(values));
   }
   return frame;
 }

@@ -13,6 +13,7 @@
 //       pressure = -tr(sigma)/3 (compression positive), von_mises = sqrt(3 J2),
 //       equivalent_strain = sqrt(2/3 e:e), e the deviator of the accumulated strain   n
 //       one dataset per internal variable, by its name   n (NaN where a model lacks it)
+//       vertices = 0 .. n-1 (int32), the XDMF Polyvertex connectivity   n
 //   /series/<name>        1-D, one per measure column ("time" first), rewritten at each call
 //
 // Every write_frame / write_series ends with H5Fflush and a rewritten run.xdmf, so a run that

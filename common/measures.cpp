@@ -49,8 +49,7 @@ const RigidBody* rigid_body_named(const Scene& scene, const std::string& name) {
 
 }  // namespace
 
-double front_position(const Particles& particles, int body, double spacing,
-                      double min_thickness) {
+double front_position(const Particles& particles, int body, double spacing, double min_thickness) {
   std::map<long, int> column_count;
   auto column = [spacing](double x) { return static_cast<long>(std::floor(x / spacing)); };
   if (min_thickness > 1.0) {
@@ -90,8 +89,8 @@ double evaluate_measure(const Measure& measure, const Scene& scene, const Partic
       double largest = 0.0;
       for (std::size_t i = 0; i < particles.size(); ++i) {
         if (particles.body[i] == body) {
-          largest = std::max(largest, std::abs(component_of(particles.displacement[i],
-                                                            measure.component)));
+          largest = std::max(largest,
+                             std::abs(component_of(particles.displacement[i], measure.component)));
         }
       }
       value = largest;

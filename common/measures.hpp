@@ -50,10 +50,10 @@ class MeasureRecorder {
 
  private:
   const Scene& scene_;
-  std::vector<int> divisor_;                  // per measure: index of its divide_by, or -1
-  std::vector<double> raw_;                   // scratch: raw values of one sample
-  std::vector<std::vector<double>> velocity_; // per measure: centre-of-mass velocity (period)
-  std::vector<std::vector<double>> columns_;  // [0] time, then one per measure
+  std::vector<int> divisor_;                   // per measure: index of its divide_by, or -1
+  std::vector<double> raw_;                    // scratch: raw values of one sample
+  std::vector<std::vector<double>> velocity_;  // per measure: centre-of-mass velocity (period)
+  std::vector<std::vector<double>> columns_;   // [0] time, then one per measure
 };
 
 }  // namespace duet

@@ -134,6 +134,7 @@ void Progress::draw_bar(double sim_time, long steps, double wall) {
 
 void Progress::print_line(double sim_time, long steps, double wall) {
   out_ << "progress " << state_text(sim_time, steps, wall) << '\n' << std::flush;
+  last_printed_sim_time_ = sim_time;
 }
 
 void Progress::finish(const std::string& status) {
@@ -142,8 +143,8 @@ void Progress::finish(const std::string& status) {
   if (is_terminal_) {
     draw_bar(last_sim_time_, last_steps_, wall);
     out_ << '\n';
-  } else if (percent(last_sim_time_) < 100.0 || next_report_time_ <= total_time_) {
-    // Plain mode: the final state, unless the 100 % line was just printed.
+  } else if (last_sim_time_ != last_printed_sim_time_) {
+    // Plain mode: the final state, unless the last line already shows it.
     print_line(last_sim_time_, last_steps_, wall);
   }
   finished_ = true;

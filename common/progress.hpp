@@ -58,6 +58,7 @@ class Progress {
   double last_print_wall_ = 0.0;
   std::size_t last_line_length_ = 0;
   double last_sim_time_ = 0.0;
+  double last_printed_sim_time_ = -1.0;  // plain mode: simulated time of the last line
   long last_steps_ = 0;
   bool finished_ = false;
 };

@@ -42,10 +42,9 @@ std::optional<StateProblem> StateChecks::check(const Particles& particles,
   // translating wall moved by its own displacement), properly crosses a wall segment.
   for (const Wall& wall : scene_.walls) {
     const std::vector<Vec2> points = wall_points_at(wall, time);
-    const Vec2 wall_motion =
-        wall.radial ? Vec2::Zero()
-                    : Vec2(schedule_integral(wall.velocity, time) -
-                           schedule_integral(wall.velocity, previous_time));
+    const Vec2 wall_motion = wall.radial ? Vec2::Zero()
+                                         : Vec2(schedule_integral(wall.velocity, time) -
+                                                schedule_integral(wall.velocity, previous_time));
     Vec2 lo, hi;
     bounding_box(points, lo, hi);
     for (std::size_t i = 0; i < n; ++i) {
@@ -57,8 +56,9 @@ std::optional<StateProblem> StateChecks::check(const Particles& particles,
       }
       for (std::size_t s = 0; s + 1 < points.size(); ++s) {
         if (segments_cross(from, to, points[s], points[s + 1])) {
-          return StateProblem{describe(("particle crossed wall '" + wall.name + "'").c_str(), i, to),
-                              static_cast<long>(i), to};
+          return StateProblem{
+              describe(("particle crossed wall '" + wall.name + "'").c_str(), i, to),
+              static_cast<long>(i), to};
         }
       }
     }

@@ -65,9 +65,13 @@ std::string xdmf_document(const std::string& h5_file_name, const std::vector<Xdm
     const std::size_t n = frame.n_points;
     x += "   <Grid Name=\"frame_" + name + "\" GridType=\"Uniform\">\n";
     x += "    <Time Value=\"" + time_text(frame.time) + "\"/>\n";
-    // One vertex cell per particle; no connectivity array needed for Polyvertex.
+    // One vertex cell per particle. The connectivity is explicit: ParaView's Xdmf3 readers make
+    // no cells from a Polyvertex topology without it (only its XDMF (2) reader does).
     x += "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(n) +
-         "\" NodesPerElement=\"1\"/>\n";
+         "\" NodesPerElement=\"1\">\n";
+    x += "     " + data_item(h5_file_name, frame.group + "/" + frame.vertices, n, 1, "Int", 4) +
+         "\n";
+    x += "    </Topology>\n";
     x += "    <Geometry GeometryType=\"XYZ\">\n";
     x += "     " + data_item(h5_file_name, frame.group + "/" + frame.geometry, n, 3, "Float", 8) +
          "\n";

@@ -23,6 +23,7 @@ struct XdmfFrame {
   std::string group;  // "/frames/000003"
   std::size_t n_points = 0;
   std::string geometry = "position";  // n x 3 dataset in the group
+  std::string vertices = "vertices";  // n int32 dataset 0 .. n-1: one vertex cell per particle
   std::vector<XdmfField> fields;
 };
 

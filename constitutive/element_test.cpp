@@ -15,6 +15,7 @@ namespace {
 
 constexpr int max_iterations = 50;
 constexpr int max_backtracks = 8;
+constexpr int max_cuts = 6;  // an increment is cut at most to 1/64
 
 std::string number(double v) {
   std::ostringstream out;
@@ -96,6 +97,7 @@ struct Solve {
   Response response;
   double relative_residual = 0.0;
   int iterations = 0;
+  bool finite = true;
 };
 
 /// Newton on the held stress components: the model's tangent first; when a tangent step does
@@ -148,6 +150,46 @@ Solve solve_increment(const Model& model, const PointState& state, const Vec6& p
   }
   return s;
 }
+
+/// Advances the point over one prescribed increment; when Newton does not converge (or the
+/// response is not finite) the increment is cut in halves, at most max_cuts times, as a
+/// non-smooth response (a correction switching on, a change of sub-step count) can leave the
+/// held stress unreachable at one step size and reachable at a smaller one.
+struct Stepper {
+  const Model& model;
+  const Control& control;
+  double stress_scale;
+
+  /// `guess`: free strains for this increment. Returns false (state untouched, `failed` set)
+  /// when even the smallest cut does not converge.
+  bool advance(PointState& state, const Vec6& prescribed, const Eigen::VectorXd& guess, int cuts,
+               Solve& failed) const {
+    Solve s = solve_increment(model, state, prescribed, control, guess, stress_scale);
+    s.finite = s.response.stress.allFinite() &&
+               std::all_of(s.response.internal.begin(), s.response.internal.end(),
+                           [](double v) { return std::isfinite(v); });
+    if (s.converged && s.finite) {
+      state.strain += voigt_to_strain(s.d_voigt);
+      state.stress = s.response.stress;
+      state.internal = std::move(s.response.internal);
+      return true;
+    }
+    if (cuts == max_cuts) {
+      failed = std::move(s);
+      return false;
+    }
+    const PointState before = state;
+    const Eigen::VectorXd half_guess = 0.5 * guess;
+    if (advance(state, 0.5 * prescribed, half_guess, cuts + 1, failed)) {
+      const Vec6 taken = strain_to_voigt(state.strain - before.strain);
+      Eigen::VectorXd next(control.free.size());
+      for (std::size_t i = 0; i < control.free.size(); ++i) next(i) = taken(control.free[i]);
+      if (advance(state, 0.5 * prescribed, next, cuts + 1, failed)) return true;
+    }
+    state = before;
+    return false;
+  }
+};
 
 int index_of(const std::vector<InternalVariable>& variables, std::string_view name) {
   for (std::size_t i = 0; i < variables.size(); ++i)
@@ -285,33 +327,30 @@ std::vector<ElementRow> run_element_test(const Model& model, const ElementTest& 
   rows.reserve(steps.size() + 1);
   rows.push_back(make_row(state, void_ratio_index, corrections_index));
   Eigen::VectorXd guess = Eigen::VectorXd::Zero(control.free.size());
-  const double stress_scale = std::abs(test.initial_stress);
+  const Stepper stepper{model, control, std::abs(test.initial_stress)};
   double controlled = 0.0;
   for (std::size_t n = 0; n < steps.size(); ++n) {
     const Vec6 prescribed = prescribed_increment(test.kind, steps[n]);
-    const Solve s = solve_increment(model, state, prescribed, control, guess, stress_scale);
+    const Vec6 strain_before = strain_to_voigt(state.strain);
+    Solve failed;
     controlled += steps[n];
-    const bool finite = s.response.stress.allFinite() &&
-                        std::all_of(s.response.internal.begin(), s.response.internal.end(),
-                                    [](double v) { return std::isfinite(v); });
-    if (!s.converged || !finite) {
+    if (!stepper.advance(state, prescribed, guess, 0, failed)) {
       std::ostringstream why;
       why << element_test_name(test.kind) << " with " << model.name() << ": increment " << n + 1
-          << " of " << steps.size() << " (controlled strain " << controlled << "): ";
-      if (!finite)
+          << " of " << steps.size() << " (controlled strain " << controlled << "), cut to 1/"
+          << (1 << max_cuts) << ": ";
+      if (!failed.finite)
         why << "non-finite stress or internal variable";
       else
-        why << "held stress not converged after " << s.iterations
-            << " Newton iterations, relative residual " << s.relative_residual << " (tolerance "
-            << element_test_tolerance << ")";
+        why << "held stress not converged after " << failed.iterations
+            << " Newton iterations, relative residual " << failed.relative_residual
+            << " (tolerance " << element_test_tolerance << ")";
       throw ElementTestFailure(why.str(), std::move(rows));
     }
     // Next guess: this increment's free strains, scaled to the next step (same size or reversed).
-    for (std::size_t i = 0; i < control.free.size(); ++i) guess(i) = s.d_voigt(control.free[i]);
+    const Vec6 taken = strain_to_voigt(state.strain) - strain_before;
+    for (std::size_t i = 0; i < control.free.size(); ++i) guess(i) = taken(control.free[i]);
     if (n + 1 < steps.size()) guess *= steps[n + 1] / steps[n];
-    state.strain += voigt_to_strain(s.d_voigt);
-    state.stress = s.response.stress;
-    state.internal = s.response.internal;
     rows.push_back(make_row(state, void_ratio_index, corrections_index));
   }
   return rows;

@@ -42,7 +42,8 @@ SimhypoSandParameters SimhypoSandParameters::read(Parameters& p) {
 }
 
 double critical_void_ratio(const SimhypoSandParameters& m, double p_eff) {
-  return m.e_Gamma - m.lambda * std::pow(std::max(p_eff, 0.0) / atmospheric_pressure, m.xi);  // eq 6
+  return m.e_Gamma -
+         m.lambda * std::pow(std::max(p_eff, 0.0) / atmospheric_pressure, m.xi);  // eq 6
 }
 
 double density_factor(const SimhypoSandParameters& m, double void_ratio, double p_eff) {
@@ -65,7 +66,7 @@ double smp_radius_ratio(const Mat3& stress) {
   const double q_m2 = 0.5 * ((s(0) - s(1)) * (s(0) - s(1)) + (s(1) - s(2)) * (s(1) - s(2)) +
                              (s(2) - s(0)) * (s(2) - s(0)));
   if (!(I1 > 0.0) || q_m2 <= 1e-24 * I1 * I1) return 1.0;  // hydrostatic limit: SMP is a circle
-  const double q_m = std::sqrt(q_m2);  // eq 18: q_m = sqrt(I1^2 - 3 I2)
+  const double q_m = std::sqrt(q_m2);                      // eq 18: q_m = sqrt(I1^2 - 3 I2)
   // I1 I2 - I3 and I1 I2 - 9 I3 in factored form (no cancellation near the hydrostatic axis).
   const double product = (s(0) + s(1)) * (s(1) + s(2)) * (s(2) + s(0));
   const double spread = s(0) * (s(1) - s(2)) * (s(1) - s(2)) +
@@ -175,8 +176,8 @@ void SimhypoSand::integrate(const Mat3& d_strain, Mat3& stress, std::span<double
   if (d_strain.isZero(0.0)) return;
   double& e = internal[kVoidRatio];
   const Mat3 start = stress;
-  const int n_substeps = static_cast<int>(std::clamp(
-      std::ceil(norm(d_strain) / m_.substep_strain), 1.0, static_cast<double>(kMaxSubsteps)));
+  const int n_substeps = static_cast<int>(std::clamp(std::ceil(norm(d_strain) / m_.substep_strain),
+                                                     1.0, static_cast<double>(kMaxSubsteps)));
   const Mat3 step = d_strain / n_substeps;
   for (int k = 0; k < n_substeps; ++k) {
     if (!(effective_pressure(stress) > m_.p_min) || !stress.allFinite()) {
@@ -246,8 +247,11 @@ bool SimhypoSand::correct_with_rate(Mat3& stress, std::span<double> internal,
       projected = norm(stress_rate) > 0.0 && project_along(f, along_rate, stress, tol);
       break;
     }
-    case CorrectionMethod::C: scale_deviator_to_surface(f, stress, tol); break;  // eq 38
-    case CorrectionMethod::none: break;
+    case CorrectionMethod::C:
+      scale_deviator_to_surface(f, stress, tol);
+      break;  // eq 38
+    case CorrectionMethod::none:
+      break;
   }
   // A direction tangent to the surface (or one that leaves it) cannot correct: fall back to C.
   if (!projected) scale_deviator_to_surface(f, stress, tol);

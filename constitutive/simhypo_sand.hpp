@@ -21,21 +21,22 @@ inline constexpr double atmospheric_pressure = 101.325e3;
 
 struct SimhypoSandParameters {
   // The model's 7 parameters (paper sec 2, Appendix A).
-  double phi_c = 30.0;    // critical state friction angle, deg (eq 16)
-  double E_i = 0.0;       // initial modulus q_dot/eps_a_dot at confining pressure sigma_c, Pa (eq 11)
-  double nu_i = 0.3;      // initial Poisson's ratio in drained triaxial compression, - (eq 10)
-  double e_Gamma = 0.0;   // critical state line: void ratio intercept, - (eq 6)
-  double lambda = 0.0;    // critical state line: slope, - (eq 6)
-  double xi = 0.7;        // critical state line: exponent, - (eq 6)
-  double alpha = 1.0;     // density factor exponent, - (eq 5)
+  double phi_c = 30.0;  // critical state friction angle, deg (eq 16)
+  double E_i = 0.0;     // initial modulus q_dot/eps_a_dot at confining pressure sigma_c, Pa (eq 11)
+  double nu_i = 0.3;    // initial Poisson's ratio in drained triaxial compression, - (eq 10)
+  double e_Gamma = 0.0;  // critical state line: void ratio intercept, - (eq 6)
+  double lambda = 0.0;   // critical state line: slope, - (eq 6)
+  double xi = 0.7;       // critical state line: exponent, - (eq 6)
+  double alpha = 1.0;    // density factor exponent, - (eq 5)
   // Options.
-  double theta = 1.0;       // failure surface weight: 0 Drucker-Prager, 1 SMP (eq 17)
-  double sigma_c = 100e3;   // confining pressure of the calibration (magnitude), Pa (eq 11)
-  double e0 = 0.0;          // initial void ratio, -
+  double theta = 1.0;      // failure surface weight: 0 Drucker-Prager, 1 SMP (eq 17)
+  double sigma_c = 100e3;  // confining pressure of the calibration (magnitude), Pa (eq 11)
+  double e0 = 0.0;         // initial void ratio, -
   CorrectionMethod correction = CorrectionMethod::C;
   double correction_tolerance = 1e-3;  // on the failure function f (eq 14)
-  double substep_strain = 1e-3;  // largest strain norm of one explicit sub-step, -
-  double p_min = 1.0;  // apex: smallest mean effective pressure kept (tensile states return here), Pa
+  double substep_strain = 1e-3;        // largest strain norm of one explicit sub-step, -
+  double p_min =
+      1.0;  // apex: smallest mean effective pressure kept (tensile states return here), Pa
 
   /// Reads the parameters with their ranges and units (material.<name>.<key> in messages).
   static SimhypoSandParameters read(Parameters& parameters);

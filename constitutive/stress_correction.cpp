@@ -11,10 +11,14 @@ std::vector<std::string> correction_method_names() {
 
 std::string correction_method_name(CorrectionMethod method) {
   switch (method) {
-    case CorrectionMethod::A: return "A";
-    case CorrectionMethod::B: return "B";
-    case CorrectionMethod::C: return "C";
-    case CorrectionMethod::none: return "none";
+    case CorrectionMethod::A:
+      return "A";
+    case CorrectionMethod::B:
+      return "B";
+    case CorrectionMethod::C:
+      return "C";
+    case CorrectionMethod::none:
+      return "none";
   }
   return "none";
 }
@@ -47,7 +51,10 @@ Mat3 failure_gradient(const FailureFunction& f, const Mat3& stress, double relat
 bool project_along(const FailureFunction& f, const CorrectionDirection& direction, Mat3& stress,
                    double tolerance, int max_iterations) {
   double value = f(stress);
-  for (int k = 0; k < max_iterations && value > tolerance; ++k) {
+  if (value <= tolerance) return true;
+  // Newton along the direction until |f| <= tolerance: a linearised step can also overshoot
+  // inside the surface, and the correction should end on it.
+  for (int k = 0; k < max_iterations && std::abs(value) > tolerance; ++k) {
     const Mat3 d = direction(stress);
     const Mat3 g = failure_gradient(f, stress);
     const double slope = contract(g, d);
@@ -62,7 +69,7 @@ bool project_along(const FailureFunction& f, const CorrectionDirection& directio
     stress = projected;
     value = projected_value;
   }
-  return value <= tolerance;
+  return std::abs(value) <= tolerance;
 }
 
 double scale_deviator_to_surface(const FailureFunction& f, Mat3& stress, double tolerance) {

@@ -9,8 +9,8 @@
 //   Method C (eq 38): s <- alpha_c s with I1 kept, alpha_c in [0, 1] found numerically
 //
 // The linearised projections of A and B are re-evaluated at the projected stress until
-// f <= tolerance (a Newton iteration along the direction), so every method ends on or inside
-// the surface unless the direction is (nearly) tangent to it.
+// |f| <= tolerance (a Newton iteration along the direction), so every method ends on the
+// surface unless the direction is (nearly) tangent to it (the model then falls back to C).
 
 #include <functional>
 #include <string>
@@ -39,9 +39,10 @@ using CorrectionDirection = std::function<Mat3(const Mat3&)>;
 Mat3 failure_gradient(const FailureFunction& f, const Mat3& stress, double relative_step = 1e-6);
 
 /// Eqs 36-37: sigma <- sigma - alpha d(sigma), alpha = f / (df/dsigma : d), repeated (at most
-/// max_iterations) until f <= tolerance. Returns false, leaving the last iterate, when the
-/// direction is (nearly) tangent to the surface, so that one step would be longer than the
-/// stress itself, or when the iteration does not reach the tolerance.
+/// max_iterations) until |f| <= tolerance; nothing is done when f <= tolerance at the start.
+/// Returns false, leaving the last iterate, when the direction is (nearly) tangent to the surface,
+/// so that one step would be longer than the stress itself, or when the iteration does not reach
+/// the tolerance.
 bool project_along(const FailureFunction& f, const CorrectionDirection& direction, Mat3& stress,
                    double tolerance, int max_iterations = 25);
 

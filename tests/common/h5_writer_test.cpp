@@ -114,6 +114,7 @@ std::size_t check_xdmf_against_h5(const fs::path& dir) {
     if (tag.rfind("<Topology", 0) == 0) {
       EXPECT_EQ(attribute(tag, "TopologyType"), "Polyvertex");
       topology_points = std::stoul(attribute(tag, "NumberOfElements"));
+      enclosing = tag;
     } else if (tag.rfind("<Attribute", 0) == 0 || tag.rfind("<Geometry", 0) == 0) {
       enclosing = tag;
     } else if (tag.rfind("<DataItem", 0) == 0) {
@@ -140,9 +141,21 @@ std::size_t check_xdmf_against_h5(const fs::path& dir) {
       if (stated.empty()) continue;
       EXPECT_EQ(stated[0], topology_points) << dataset;
       const std::size_t columns = stated.size() == 1 ? 1 : stated[1];
-      const std::string type =
-          enclosing.rfind("<Geometry", 0) == 0 ? "Geometry" : attribute(enclosing, "AttributeType");
-      if (type == "Geometry" || type == "Vector") {
+      std::string type = attribute(enclosing, "AttributeType");
+      if (enclosing.rfind("<Geometry", 0) == 0) type = "Geometry";
+      if (enclosing.rfind("<Topology", 0) == 0) type = "Topology";
+      if (type == "Topology") {
+        // One vertex cell per particle: the connectivity is 0, 1, ..., n-1.
+        EXPECT_EQ(stated.size(), 1u) << dataset;
+        EXPECT_EQ(attribute(tag, "NumberType"), "Int") << dataset;
+        std::vector<int> vertices(stated[0]);
+        const hid_t connectivity = H5Dopen2(file, dataset.c_str(), H5P_DEFAULT);
+        H5Dread(connectivity, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, vertices.data());
+        H5Dclose(connectivity);
+        for (std::size_t i = 0; i < vertices.size(); ++i) {
+          EXPECT_EQ(vertices[i], static_cast<int>(i)) << dataset;
+        }
+      } else if (type == "Geometry" || type == "Vector") {
         EXPECT_EQ(columns, 3u) << dataset;
       } else if (type == "Tensor") {
         EXPECT_EQ(columns, 9u) << dataset;
@@ -258,9 +271,9 @@ TEST(RunWriter, XdmfNamesDatasetsThatExistWithTheirShapes) {
   EXPECT_EQ(count_of(xdmf, "GridType=\"Uniform\""), times.size());
   EXPECT_EQ(count_of(xdmf, "CollectionType=\"Temporal\""), 1u);
   EXPECT_EQ(count_of(xdmf, "<Time Value=\"0.050000000000000003\"/>"), 1u);
-  // Per frame: geometry + velocity, displacement, stress, strain, mass, volume, density, body,
-  // material, pressure, von_mises, equivalent_strain (13) + 2 internal variables = 15 items.
-  EXPECT_EQ(check_xdmf_against_h5(dir), 15u * times.size());
+  // Per frame: topology, geometry, velocity, displacement, stress, strain, mass, volume, density,
+  // body, material, pressure, von_mises, equivalent_strain (14) + 2 internal variables = 16 items.
+  EXPECT_EQ(check_xdmf_against_h5(dir), 16u * times.size());
   EXPECT_EQ(count_of(xdmf, "AttributeType=\"Tensor\""), 2u * times.size());
   EXPECT_EQ(count_of(xdmf, "Name=\"void_ratio\""), times.size());
 }
@@ -282,7 +295,7 @@ TEST(RunWriter, PairIsValidAfterEachFrameBeforeTheWriterCloses) {
   const Frame copied = read_frame((snapshot / "run.h5").string(), 0);
   EXPECT_EQ(copied.time, 0.5);
   EXPECT_EQ(copied.position[2].x(), particles.position[2].x());
-  EXPECT_EQ(check_xdmf_against_h5(snapshot), 15u);
+  EXPECT_EQ(check_xdmf_against_h5(snapshot), 16u);
   // A second read-only handle on the live file works too, while the writer keeps it open.
   const Frame live = read_frame(writer.h5_path(), 0);
   EXPECT_EQ(live.stress[1](0, 1), particles.stress[1](0, 1));
@@ -305,7 +318,7 @@ TEST(RunWriter, FrameAtTheSameTimeReplacesThePreviousOne) {
   const std::string h5 = (dir / "run.h5").string();
   EXPECT_EQ(count_frames(h5), 2u);
   EXPECT_EQ(read_frame(h5, 1).position[0].x(), after.position[0].x());
-  EXPECT_EQ(check_xdmf_against_h5(dir), 2u * 15u);
+  EXPECT_EQ(check_xdmf_against_h5(dir), 2u * 16u);
 }
 
 TEST(RunWriter, SeriesAreRewrittenWithTheirFullLength) {

@@ -215,10 +215,9 @@ TEST(SimhypoSand, TangentMatchesFiniteDifferenceOfIntegrate) {
   const Mat6 analytic = model.tangent(d_strain, stress, internal);
   const Mat6 numeric = finite_difference_tangent(model, d_strain, stress, internal, 1e-4);
   // Assert
-  EXPECT_LT((analytic - numeric).norm(), 1e-5 * analytic.norm())
-      << "analytic\n"
-      << analytic << "\nnumeric\n"
-      << numeric;
+  EXPECT_LT((analytic - numeric).norm(), 1e-5 * analytic.norm()) << "analytic\n"
+                                                                 << analytic << "\nnumeric\n"
+                                                                 << numeric;
 }
 
 TEST(SimhypoSand, TangentTimesIncrementIsTheRate) {
@@ -296,8 +295,8 @@ TEST(StressCorrection, MethodCMatchesTheClosedFormOnADruckerPragerCone) {
   // Arrange: |s| / |p| = 0.8 against a cone of 0.5
   Mat3 stress = general_stress();
   const Mat3 s0 = deviator(stress);
-  stress = mean_stress(stress) * Mat3::Identity() + s0 * (0.8 * std::abs(mean_stress(stress)) /
-                                                          norm(s0));
+  stress = mean_stress(stress) * Mat3::Identity() +
+           s0 * (0.8 * std::abs(mean_stress(stress)) / norm(s0));
   const double p = mean_stress(stress);
   // Act
   const double alpha = scale_deviator_to_surface(cone, stress, 1e-10);

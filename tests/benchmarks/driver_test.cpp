@@ -1,0 +1,157 @@
+// The driver's loop, output and failure handling (benchmarks/driver.cpp), driven by a test-only
+// solver that moves every particle ballistically (x += v dt, no forces), so every expected value
+// is a closed form: the front of a block moving at v is x0 + v t.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "benchmarks/driver.hpp"
+#include "common/h5_writer.hpp"
+#include "common/scene_loader.hpp"
+
+namespace duet {
+namespace {
+
+struct BallisticOptions {
+  double dt = 0.01;
+  long throw_at_step = -1;  // throw NumericalFailure at this step
+  long nan_at_step = -1;    // write a NaN stress at this step
+};
+
+class BallisticSolver final : public Solver {
+ public:
+  explicit BallisticSolver(BallisticOptions options) : options_(options) {}
+  void initialise(const Scene&, Particles&) override {}
+  double step(const Scene&, Particles& particles, double) override {
+    ++steps_;
+    if (steps_ == options_.throw_at_step) throw NumericalFailure("Newton did not converge", 7);
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+      particles.position[i] += options_.dt * particles.velocity[i];
+      particles.displacement[i] += options_.dt * particles.velocity[i];
+    }
+    if (steps_ == options_.nan_at_step) particles.stress[5](1, 1) = std::nan("");
+    return options_.dt;
+  }
+  std::vector<Reaction> reactions() const override { return {}; }
+  const Timers& timers() const override { return timers_; }
+
+ private:
+  BallisticOptions options_;
+  long steps_ = 0;
+  Timers timers_;
+};
+
+MethodInfo ballistic(BallisticOptions options) {
+  return {"ballistic", "test-only rigid translation",
+          [options](const Scene&) { return std::make_unique<BallisticSolver>(options); }};
+}
+
+// A 0.1 m x 0.05 m block at spacing 0.01 moving right at 0.1 m/s for 1 s.
+const char* kScene = R"(
+name = "moving-block"
+spacing = 0.01
+[time]
+end_time = 1.0
+output_interval = 0.1
+[domain]
+min = [-1.0, -1.0]
+max = [2.0, 1.0]
+[material.steel]
+model = "linear-elastic"
+density = 1000.0
+E = 1e7
+nu = 0.3
+[body.block]
+material = "steel"
+shape = "rectangle"
+min = [0.0, 0.0]
+max = [0.1, 0.05]
+initial_velocity = [0.1, 0.0]
+[measure.front]
+kind = "front"
+target = "block"
+[reference.front]
+value = 0.195
+source = "closed form: x0 + v t = 0.095 + 0.1 * 1.0"
+)";
+
+std::string out_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("duet_driver_test_" + name);
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+TEST(Driver, CompletedRunScoresItsMeasureAgainstTheReference) {
+  const Scene scene = load_scene_from_string(kScene, "moving-block.toml");
+  RunOptions options{out_dir("completed"), false};
+  const RunSummary summary = run_scene(scene, ballistic({}), options);
+  EXPECT_EQ(summary.status, "completed");
+  EXPECT_EQ(summary.steps, 100);
+  EXPECT_EQ(summary.particles, 50);
+  EXPECT_NEAR(summary.measures.at("front"), 0.195, 1e-12);
+  EXPECT_LT(summary.accuracy.at("front").rel_error, 1e-10);
+  // Frames at t = 0, 0.1, ..., 1.0 (the final state coincides with the last output time).
+  EXPECT_EQ(count_frames(options.out_dir + "/run.h5"), 11u);
+  const std::string metrics = read_text(options.out_dir + "/metrics.json");
+  EXPECT_NE(metrics.find("\"status\": \"completed\""), std::string::npos);
+  EXPECT_NE(metrics.find("\"commit\""), std::string::npos);
+}
+
+TEST(Driver, ParticleCrossingAWallStopsTheRunAndKeepsItsFrames) {
+  std::string text = kScene;
+  text += "[wall.barrier]\npoints = [[0.1505, -0.5], [0.1505, 0.5]]\ncondition = \"no-slip\"\n";
+  const Scene scene = load_scene_from_string(text, "moving-block.toml");
+  RunOptions options{out_dir("crossing"), false};
+  const RunSummary summary = run_scene(scene, ballistic({}), options);
+  EXPECT_EQ(summary.status, "failed");
+  EXPECT_NE(summary.failure_reason.find("crossed wall 'barrier'"), std::string::npos);
+  // The front column (x0 = 0.095) passes x = 0.1505 after 0.555 s: at step 56 (t = 0.56).
+  EXPECT_NEAR(summary.failure_time, 0.56, 1e-9);
+  EXPECT_GE(count_frames(options.out_dir + "/run.h5"), 7u);  // 0 .. 0.5 and the failed state
+}
+
+TEST(Driver, ParticleLeavingTheDomainIsAFailureWithTimeAndParticle) {
+  std::string text = kScene;
+  text.replace(text.find("max = [2.0, 1.0]"), 16, "max = [0.1505, 1.0]");
+  const Scene scene = load_scene_from_string(text, "moving-block.toml");
+  RunOptions options{out_dir("domain"), false};
+  const RunSummary summary = run_scene(scene, ballistic({}), options);
+  EXPECT_EQ(summary.status, "failed");
+  EXPECT_NE(summary.failure_reason.find("left the domain"), std::string::npos);
+  // The front particle (x0 = 0.095) passes x = 0.1505 after 0.555 s: at step 56 (t = 0.56).
+  EXPECT_NEAR(summary.failure_time, 0.56, 1e-9);
+  EXPECT_GE(count_frames(options.out_dir + "/run.h5"), 6u);  // 0 .. 0.5 and the failed state
+  EXPECT_NE(read_text(options.out_dir + "/metrics.json").find("\"status\": \"failed\""),
+            std::string::npos);
+}
+
+TEST(Driver, NonFiniteStressIsAFailure) {
+  const Scene scene = load_scene_from_string(kScene, "moving-block.toml");
+  RunOptions options{out_dir("nan"), false};
+  const RunSummary summary = run_scene(scene, ballistic({.nan_at_step = 30}), options);
+  EXPECT_EQ(summary.status, "failed");
+  EXPECT_NE(summary.failure_reason.find("non-finite stress at particle 5"), std::string::npos);
+  EXPECT_NEAR(summary.failure_time, 0.30, 1e-9);
+}
+
+TEST(Driver, SolverNumericalFailureIsReportedWithItsReason) {
+  const Scene scene = load_scene_from_string(kScene, "moving-block.toml");
+  RunOptions options{out_dir("newton"), false};
+  const RunSummary summary = run_scene(scene, ballistic({.throw_at_step = 12}), options);
+  EXPECT_EQ(summary.status, "failed");
+  EXPECT_EQ(summary.failure_reason, "Newton did not converge");
+  EXPECT_NEAR(summary.failure_time, 0.11, 1e-9);
+  EXPECT_EQ(summary.steps, 11);
+}
+
+}  // namespace
+}  // namespace duet

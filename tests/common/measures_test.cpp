@@ -1,0 +1,77 @@
+// Measures (common/measures.cpp): period from zero crossings, the run-out toe with a minimum
+// thickness, and the reduction of a series to the scored value.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "common/measures.hpp"
+
+namespace duet {
+namespace {
+
+TEST(PeriodFromZeroCrossings, RecoversThePeriodOfASampledSine) {
+  const double period = 0.04;
+  std::vector<double> t, v;
+  for (int k = 0; k <= 1000; ++k) {
+    t.push_back(k * 1e-4);
+    v.push_back(std::cos(2.0 * std::numbers::pi * t.back() / period));
+  }
+  EXPECT_NEAR(period_from_zero_crossings(t, v), period, 1e-6);
+}
+
+TEST(PeriodFromZeroCrossings, IsUndefinedBeforeTwoCrossings) {
+  EXPECT_TRUE(std::isnan(period_from_zero_crossings({0.0, 1.0, 2.0}, {1.0, -1.0, -2.0})));
+}
+
+Particles column_of_particles(const std::vector<Vec2>& positions) {
+  Particles p;
+  p.resize(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    p.position[i] = positions[i];
+    p.body[i] = 0;
+  }
+  return p;
+}
+
+TEST(FrontPosition, IgnoresColumnsThinnerThanTheMinimumThickness) {
+  // Two columns 3 particles thick at x = 0.005, 0.015 and a lone particle at x = 0.045.
+  const Particles p = column_of_particles({{0.005, 0.005},
+                                           {0.005, 0.015},
+                                           {0.005, 0.025},
+                                           {0.015, 0.005},
+                                           {0.015, 0.015},
+                                           {0.015, 0.025},
+                                           {0.045, 0.005}});
+  EXPECT_DOUBLE_EQ(front_position(p, 0, 0.01, 0.0), 0.045);
+  EXPECT_DOUBLE_EQ(front_position(p, 0, 0.01, 3.0), 0.015);
+}
+
+TEST(MeasureRecorder, MaxTakesTheLargestMagnitudeAndTimeInterpolates) {
+  Scene scene;
+  scene.spacing = 0.01;
+  scene.bodies.push_back(Body{.name = "b"});
+  scene.measures.push_back(Measure{.name = "peak",
+                                   .kind = MeasureKind::max_displacement,
+                                   .target = "b",
+                                   .component = "x",
+                                   .at = MeasureAt::max});
+  scene.measures.push_back(Measure{.name = "half",
+                                   .kind = MeasureKind::max_displacement,
+                                   .target = "b",
+                                   .component = "x",
+                                   .at = MeasureAt::time,
+                                   .time = 0.5});
+  MeasureRecorder recorder(scene);
+  Particles p = column_of_particles({{0.0, 0.0}});
+  for (int k = 0; k <= 10; ++k) {
+    const double t = 0.1 * k;
+    p.displacement[0] = Vec2(std::sin(std::numbers::pi * t), 0.0);  // peak 1 at t = 0.5
+    recorder.sample(t, p, {});
+  }
+  EXPECT_NEAR(recorder.final_value("peak"), 1.0, 1e-12);
+  EXPECT_NEAR(recorder.final_value("half"), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace duet

@@ -1,0 +1,69 @@
+// Collapse benchmarks through the driver at smoke resolution (dp = 1 cm, 200 particles):
+// Peng 2015 5.2 (hypoplastic sand) and Bui 2008 (Drucker-Prager aluminium bars), both scored
+// against the Lube et al. run-out law as the scenes state it (d_inf = 0.36 m for a = 0.5).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "benchmarks/driver.hpp"
+#include "common/scene_loader.hpp"
+#include "sph/method.hpp"
+
+namespace duet {
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The number after "key": in the metrics text (-1 when absent).
+long metrics_count(const std::string& metrics, const std::string& key) {
+  const auto at = metrics.find("\"" + key + "\":");
+  if (at == std::string::npos) return -1;
+  return std::stol(metrics.substr(at + key.size() + 3));
+}
+
+RunSummary run_collapse(const std::string& scene_file, const std::vector<std::string>& overrides,
+                        const std::string& out) {
+  const Scene scene =
+      load_scene(std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/" + scene_file, overrides);
+  MethodRegistry methods;
+  sph::register_sph(methods);
+  const auto dir = (std::filesystem::temp_directory_path() / out).string();
+  std::filesystem::remove_all(dir);
+  return run_scene(scene, methods.find("sph"), RunOptions{dir, false});
+}
+
+TEST(CollapseBenchmark, HypoplasticSandRunsOutWithinFifteenPercentWithoutPenetration) {
+  // Arrange / Act: Peng's scheme as the scene sets it (Verlet, CFL 0.05, c_s = 100 m/s)
+  const RunSummary run = run_collapse("collapse.toml", {"spacing=0.01"}, "duet-sph-collapse");
+  // Assert
+  ASSERT_TRUE(run.completed()) << run.failure_reason << " at t = " << run.failure_time;
+  const Accuracy& runout = run.accuracy.at("runout");
+  std::printf("run-out %.4f m (reference %.3f), %ld steps, %.1f s\n", runout.value,
+              runout.reference, run.steps, run.wall_seconds);
+  EXPECT_LT(runout.rel_error, 0.15);
+  EXPECT_EQ(metrics_count(read_text(run.out_dir + "/metrics.json"), "penetrations_max"), 0);
+}
+
+TEST(CollapseBenchmark, DruckerPragerBarsRunOutWithoutPenetration) {
+  // Arrange / Act: Bui 2008 uses leapfrog; the same code path as the sand, another model
+  const RunSummary run =
+      run_collapse("collapse-bui.toml", {"spacing=0.01", "sph.integrator=leapfrog", "sph.cfl=0.2"},
+                   "duet-sph-collapse-bui");
+  // Assert
+  ASSERT_TRUE(run.completed()) << run.failure_reason << " at t = " << run.failure_time;
+  const Accuracy& runout = run.accuracy.at("runout");
+  std::printf("run-out %.4f m (reference %.3f), %ld steps, %.1f s\n", runout.value,
+              runout.reference, run.steps, run.wall_seconds);
+  EXPECT_LT(runout.rel_error, 0.2);  // the scene's own tolerance
+  EXPECT_EQ(metrics_count(read_text(run.out_dir + "/metrics.json"), "penetrations_max"), 0);
+}
+
+}  // namespace
+}  // namespace duet
