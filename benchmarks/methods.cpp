@@ -1,10 +1,12 @@
 #include "benchmarks/methods.hpp"
 
+#include "sph/method.hpp"
+
 namespace duet {
 
 void register_builtin_methods(MethodRegistry& registry) {
-  // One line per method: register_sph(registry); register_espfem(registry); ...
-  (void)registry;
+  // One line per method.
+  sph::register_sph(registry);
 }
 
 const MethodRegistry& builtin_methods() {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "common/parameter_value.hpp"
 #include "common/tensor.hpp"
-#include "constitutive/parameters.hpp"
 
 namespace duet {
 
@@ -27,9 +27,9 @@ struct Material {
   std::string model;     // registry name: "hypoplastic", "drucker-prager", ...
   double density = 0.0;  // kg/m^3
   // Every other key of [material.<name>]: the model's parameters, as the user gave them.
-  std::map<std::string, constitutive::ParameterValue> parameters;
+  std::map<std::string, ParameterValue> parameters;
   // The parameters as the model read them (defaults and derived values included).
-  std::map<std::string, constitutive::ParameterValue> resolved;
+  std::map<std::string, ParameterValue> resolved;
 };
 
 enum class ShapeKind { rectangle, polygon };

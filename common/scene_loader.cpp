@@ -14,7 +14,6 @@
 #include "common/scene_schema.hpp"
 #include "common/scene_validation.hpp"
 #include "common/suggest.hpp"
-#include "constitutive/registry.hpp"
 
 namespace duet {
 
@@ -146,7 +145,7 @@ void reduce_strength(Material& m, const StrengthReduction& reduction, SectionRea
 
 Material read_material(const std::string& name, const toml::node& node,
                        const StrengthReduction& reduction, const SceneSource& source,
-                       toml::table& resolved) {
+                       const MaterialCheck& check, toml::table& resolved) {
   const std::string path = "material." + name;
   SectionReader r(node.as_table(), path, {}, source, resolved);
   if (!node.is_table()) r.fail("", "wrong type: " + describe_type(node), "a table [" + path + "]");
@@ -168,17 +167,21 @@ Material read_material(const std::string& name, const toml::node& node,
     }
   }
   reduce_strength(m, reduction, r);
-  try {
-    constitutive::make_model(m.model, m.parameters, path, &m.resolved);
-  } catch (const InputError& e) {
-    // Point at the parameter the message names ("material.sand.nu = ..."), else the model key.
-    const std::string message = e.what();
-    std::string at = "model";
-    for (const auto& [key, value] : m.parameters) {
-      const std::string prefix = path + "." + key;
-      if (message.starts_with(prefix + " ") || message.starts_with(prefix + ":")) at = key;
+  if (!check) {
+    m.resolved = m.parameters;
+  } else {
+    try {
+      m.resolved = check(m.model, m.parameters, path);
+    } catch (const InputError& e) {
+      // Point at the parameter the message names ("material.sand.nu = ..."), else the model key.
+      const std::string message = e.what();
+      std::string at = "model";
+      for (const auto& [key, value] : m.parameters) {
+        const std::string prefix = path + "." + key;
+        if (message.starts_with(prefix + " ") || message.starts_with(prefix + ":")) at = key;
+      }
+      throw InputError(r.where(at) + ": " + message);
     }
-    throw InputError(r.where(at) + ": " + message);
   }
   for (const auto& [key, value] : m.resolved) {
     if (const double* d = std::get_if<double>(&value)) {
@@ -456,7 +459,7 @@ void fill_domain(Scene& scene, SectionReader& r) {
   r.finish();
 }
 
-Scene read_scene(const toml::table& root, const SceneSource& source) {
+Scene read_scene(const toml::table& root, const SceneSource& source, const MaterialCheck& check) {
   Scene scene;
   scene.path = source.file;
   toml::table resolved;
@@ -494,7 +497,7 @@ Scene read_scene(const toml::table& root, const SceneSource& source) {
     toml::table& resolved_materials = resolved_child(resolved, "material");
     for (const auto& [k, v] : *materials) {
       const std::string name(k.str());
-      scene.materials.push_back(read_material(name, v, scene.strength_reduction, source,
+      scene.materials.push_back(read_material(name, v, scene.strength_reduction, source, check,
                                               resolved_child(resolved_materials, name)));
     }
   }
@@ -542,7 +545,8 @@ Scene read_scene(const toml::table& root, const SceneSource& source) {
 }  // namespace
 
 Scene load_scene_from_string(const std::string& toml_text, const std::string& path,
-                             const std::vector<std::string>& overrides) {
+                             const std::vector<std::string>& overrides,
+                             const MaterialCheck& check) {
   SceneSource source;
   source.file = path;
   toml::table root;
@@ -553,17 +557,18 @@ Scene load_scene_from_string(const std::string& toml_text, const std::string& pa
                      std::string(e.description()) + "; expected valid TOML");
   }
   for (const std::string& o : overrides) apply_override(root, o, source);
-  Scene scene = read_scene(root, source);
+  Scene scene = read_scene(root, source, check);
   validate_scene(scene, root, source);
   return scene;
 }
 
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                 const MaterialCheck& check) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path + ": cannot open the scene file; expected a readable TOML file");
   std::ostringstream text;
   text << file.rdbuf();
-  return load_scene_from_string(text.str(), path, overrides);
+  return load_scene_from_string(text.str(), path, overrides, check);
 }
 
 }  // namespace duet

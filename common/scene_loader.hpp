@@ -20,6 +20,8 @@
 //   [reference.<measure name>] value, source (required), tolerance
 //   [sph], [spfem], [spfem.implicit]: method options (common/scene.hpp has the defaults)
 
+#include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,13 +29,23 @@
 
 namespace duet {
 
+/// Checks a material's model and parameters and returns the parameters as the model resolved them
+/// (defaults and derived values included); throws InputError "<context>.<key> = value: ...".
+/// common/ knows no soil model, so the layer that does provides it (benchmarks/scene_input.hpp
+/// passes the constitutive registry); without one, model names and parameters are not checked.
+using MaterialCheck = std::function<std::map<std::string, ParameterValue>(
+    const std::string& model, const std::map<std::string, ParameterValue>& parameters,
+    const std::string& context)>;
+
 /// Loads, overrides and validates. `overrides` are "dotted.key=value" strings (from --set); the
 /// value is read as TOML (number, bool, quoted string, array), a bare word as a string, and is
 /// type-checked like the file. `--spacing DP` is the override "spacing=DP".
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {},
+                 const MaterialCheck& check = {});
 
 /// The same from TOML text (`path` is only used in messages and for the default name).
 Scene load_scene_from_string(const std::string& toml_text, const std::string& path,
-                             const std::vector<std::string>& overrides = {});
+                             const std::vector<std::string>& overrides = {},
+                             const MaterialCheck& check = {});
 
 }  // namespace duet

@@ -94,8 +94,8 @@ HypoplasticParameters HypoplasticParameters::read(Parameters& parameters) {
     TriaxialProperties t;
     t.initial_modulus =
         parameters.require("Ei", Range::positive(), "Pa", "initial tangent modulus");
-    t.initial_poisson_ratio = parameters.require("nu", Range::closed_open(0.0, 0.5), "-",
-                                                 "initial Poisson's ratio");
+    t.initial_poisson_ratio =
+        parameters.require("nu", Range::closed_open(0.0, 0.5), "-", "initial Poisson's ratio");
     t.friction_angle = parameters.require("phi", Range::open(0.0, 90.0), "deg", "friction angle");
     t.dilatancy_angle =
         parameters.require("psi", Range::closed_open(0.0, 45.0), "deg", "dilatancy angle");
@@ -147,8 +147,8 @@ Hypoplastic::Hypoplastic(HypoplasticParameters parameters) : parameters_(paramet
   const HypoplasticConstants& c = parameters_.constants;
   // |L:D + N |D|| / (|eta| |D|) <= sqrt3 |c1| + sqrt3 |c2| + |c3| |eta|/|tr eta| + 2 |c4|, with
   // |eta|/|tr eta| about 1 inside the failure cone.
-  rate_bound_ = std::sqrt(3.0) * (std::abs(c.c1) + std::abs(c.c2)) + std::abs(c.c3) +
-                2.0 * std::abs(c.c4);
+  rate_bound_ =
+      std::sqrt(3.0) * (std::abs(c.c1) + std::abs(c.c2)) + std::abs(c.c3) + 2.0 * std::abs(c.c4);
 }
 
 std::vector<InternalVariable> Hypoplastic::internal_variables() const {
@@ -197,8 +197,7 @@ Mat3 Hypoplastic::objective_rate(const Mat3& stretching, const Mat3& stress,
   return hypoplastic_rate(parameters_.constants, admissible_eta(stress), stretching);
 }
 
-Mat6 Hypoplastic::tangent(const Mat3& d_strain, const Mat3& stress,
-                          std::span<const double>) const {
+Mat6 Hypoplastic::tangent(const Mat3& d_strain, const Mat3& stress, std::span<const double>) const {
   const HypoplasticConstants& c = parameters_.constants;
   const Mat3 eta = admissible_eta(stress);
   Mat6 tangent;

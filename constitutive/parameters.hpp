@@ -10,9 +10,11 @@
 #include <variant>
 #include <vector>
 
+#include "common/parameter_value.hpp"
+
 namespace duet::constitutive {
 
-using ParameterValue = std::variant<double, std::string>;
+using duet::ParameterValue;
 
 /// An interval with open or closed ends; infinite ends allowed.
 struct Range {

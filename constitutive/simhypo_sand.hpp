@@ -105,7 +105,8 @@ class SimhypoSand final : public Model {
                       std::span<const double> internal) const override;
   Mat6 tangent(const Mat3& d_strain, const Mat3& stress,
                std::span<const double> internal) const override;
-  /// From the linear part at the state: G = -f_s tr(sigma)/2, K = f_s p (...) (docs).
+  /// From the linear part at an isotropic state of the same p': G = f_s tr(sigma)/2 =
+  /// -1.5 f_s p', K = -f_s p' (1 + f_v + a^2/3) (f_s < 0).
   ElasticModuli moduli(const Mat3& stress, std::span<const double> internal) const override;
   /// The selected correction without a known increment (Method B then uses the stress rate of
   /// continued flow along the flow rule, which points along N).

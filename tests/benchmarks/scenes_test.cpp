@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
+#include "benchmarks/scene_input.hpp"
 #include "common/input_error.hpp"
-#include "common/scene_loader.hpp"
 #include "constitutive/registry.hpp"
 
 namespace duet {
@@ -56,7 +56,7 @@ TEST_P(BenchmarkScene, Loads) {
   }
   Scene scene;
   try {
-    scene = load_scene(GetParam().string());
+    scene = load_scene_checked(GetParam().string());
   } catch (const InputError& e) {
     FAIL() << e.what();
   }

@@ -14,14 +14,15 @@ std::vector<Vec2> square(double x0, double y0, double side) {
   return {{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}};
 }
 
-// An L: the unit square [0, 2] x [0, 2] without its top-right quarter (area 3).
+// An L: the square [0, 2] x [0, 2] without its top-right quarter (area 3).
 std::vector<Vec2> l_shape() {
   return {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
 }
 
 TEST(Geometry, SignedAreaIsPositiveCounterClockwiseAndExactForAnLShape) {
-  EXPECT_DOUBLE_EQ(signed_area(l_shape()), 3.0);
-  std::vector<Vec2> clockwise(l_shape().rbegin(), l_shape().rend());
+  const std::vector<Vec2> l = l_shape();
+  EXPECT_DOUBLE_EQ(signed_area(l), 3.0);
+  const std::vector<Vec2> clockwise(l.rbegin(), l.rend());
   EXPECT_DOUBLE_EQ(signed_area(clockwise), -3.0);
 }
 

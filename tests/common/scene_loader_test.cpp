@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "benchmarks/scene_input.hpp"
 #include "common/input_error.hpp"
 #include "constitutive/registry.hpp"
 
@@ -43,7 +44,7 @@ points = [[0.0, 0.0], [0.6, 0.0]]
 /// The message of the InputError that loading throws ("" when it loads).
 std::string refusal(const std::string& text, const std::vector<std::string>& overrides = {}) {
   try {
-    load_scene_from_string(text, "scene.toml", overrides);
+    load_scene_checked_from_string(text, "scene.toml", overrides);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -51,7 +52,7 @@ std::string refusal(const std::string& text, const std::vector<std::string>& ove
 }
 
 TEST(SceneLoader, FillsEveryDefaultFromThePapers) {
-  const Scene s = load_scene_from_string(kScene, "scene.toml");
+  const Scene s = load_scene_checked_from_string(kScene, "scene.toml");
   EXPECT_EQ(s.name, "column");
   EXPECT_DOUBLE_EQ(s.time.output_interval, 0.5 / 50);
   EXPECT_EQ(s.initial_stress.kind, InitialStressKind::none);
@@ -69,11 +70,11 @@ TEST(SceneLoader, FillsEveryDefaultFromThePapers) {
 TEST(SceneLoader, GravityDefaultsToZero) {
   std::string text = kScene;
   text.replace(text.find("gravity = [0.0, -9.81]\n"), 24, "");
-  EXPECT_EQ(load_scene_from_string(text, "scene.toml").gravity, Vec2::Zero());
+  EXPECT_EQ(load_scene_checked_from_string(text, "scene.toml").gravity, Vec2::Zero());
 }
 
 TEST(SceneLoader, DefaultDomainIsThePaddedBoundingBoxOfEverything) {
-  const Scene s = load_scene_from_string(kScene, "scene.toml");
+  const Scene s = load_scene_checked_from_string(kScene, "scene.toml");
   // Everything spans [0, 0.6] x [0, 0.1]; padding a quarter of 0.6.
   EXPECT_DOUBLE_EQ(s.domain.padding, 0.15);
   EXPECT_NEAR(s.domain.min.x(), -0.15, 1e-15);
@@ -82,7 +83,7 @@ TEST(SceneLoader, DefaultDomainIsThePaddedBoundingBoxOfEverything) {
 }
 
 TEST(SceneLoader, OverrideReplacesAValueByDottedPath) {
-  const Scene s = load_scene_from_string(
+  const Scene s = load_scene_checked_from_string(
       kScene, "scene.toml", {"spacing=0.005", "material.sand.nu=0.25", "sph.alpha=0.5"});
   EXPECT_DOUBLE_EQ(s.spacing, 0.005);
   EXPECT_DOUBLE_EQ(std::get<double>(s.materials[0].parameters.at("nu")), 0.25);
@@ -90,7 +91,7 @@ TEST(SceneLoader, OverrideReplacesAValueByDottedPath) {
 }
 
 TEST(SceneLoader, OverrideTakesABareWordAsAString) {
-  const Scene s = load_scene_from_string(kScene, "scene.toml", {"sph.kernel=wendland-c2"});
+  const Scene s = load_scene_checked_from_string(kScene, "scene.toml", {"sph.kernel=wendland-c2"});
   EXPECT_EQ(s.sph.kernel, SphKernel::wendland_c2);
 }
 
@@ -147,7 +148,7 @@ TEST(SceneLoader, ClockwisePolygonIsReorderedCounterClockwise) {
   std::string text = kScene;
   text.replace(text.find("min = [0.0, 0.0]\nmax = [0.2, 0.1]"), 33,
                "vertices = [[0.0, 0.0], [0.0, 0.1], [0.2, 0.1], [0.2, 0.0]]");
-  const Scene s = load_scene_from_string(text, "scene.toml");
+  const Scene s = load_scene_checked_from_string(text, "scene.toml");
   ASSERT_EQ(s.bodies[0].shape, ShapeKind::polygon);
   const auto& v = s.bodies[0].outline;
   double twice_area = 0.0;
@@ -160,8 +161,8 @@ TEST(SceneLoader, ClockwisePolygonIsReorderedCounterClockwise) {
 }
 
 TEST(SceneLoader, ResolvedTomlLoadsBackToTheSameScene) {
-  const Scene s = load_scene_from_string(kScene, "scene.toml", {"sph.alpha=0.7"});
-  const Scene again = load_scene_from_string(s.resolved_toml, "resolved.toml");
+  const Scene s = load_scene_checked_from_string(kScene, "scene.toml", {"sph.alpha=0.7"});
+  const Scene again = load_scene_checked_from_string(s.resolved_toml, "resolved.toml");
   EXPECT_DOUBLE_EQ(again.spacing, s.spacing);
   EXPECT_DOUBLE_EQ(again.sph.alpha, 0.7);
   EXPECT_DOUBLE_EQ(again.time.output_interval, s.time.output_interval);
@@ -179,7 +180,8 @@ TEST(SceneLoader, StrengthReductionDividesCohesionAndTangentOfFriction) {
   std::string text = kScene;
   text.replace(text.find("model = \"linear-elastic\""), 24,
                "model = \"drucker-prager\"\nphi = 20.0\npsi = 0.0\nc = 10.0e3");
-  const Scene s = load_scene_from_string(text, "scene.toml", {"strength_reduction.factor=1.4"});
+  const Scene s =
+      load_scene_checked_from_string(text, "scene.toml", {"strength_reduction.factor=1.4"});
   const double deg = std::numbers::pi / 180.0;
   // Peng 2015 eq 39: c / f; Griffiths & Lane: tan(phi_f) = tan(phi) / f.
   EXPECT_NEAR(std::get<double>(s.materials[0].parameters.at("c")), 10.0e3 / 1.4, 1e-9);
@@ -208,7 +210,7 @@ TEST(SceneLoader, EveryBadSceneIsRefusedWithItsExpectedMessage) {
     ASSERT_FALSE(fragment.empty()) << entry.path() << " lacks its '# expect: ' first line";
     std::string message;
     try {
-      load_scene(entry.path().string());
+      load_scene_checked(entry.path().string());
     } catch (const InputError& e) {
       message = e.what();
     }
@@ -225,7 +227,7 @@ TEST(SceneLoader, BadSceneMessagesCarryTheLineOfTheOffendingKey) {
       std::filesystem::path(DUET_SOURCE_DIR) / "tests/data/bad-scenes/bad-parameter.toml";
   std::string message;
   try {
-    load_scene(file.string());
+    load_scene_checked(file.string());
   } catch (const InputError& e) {
     message = e.what();
   }

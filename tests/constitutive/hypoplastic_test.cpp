@@ -111,8 +111,9 @@ TEST(Hypoplastic, TangentMatchesFiniteDifferenceOfIntegrateWithShear) {
   const Mat6 analytic = model.tangent(d_strain, anisotropic_stress(), internal);
   const Mat6 numeric = finite_difference_tangent(model, d_strain, anisotropic_stress(), internal);
   // Assert: equal up to the O(|d_eps|) change of L and N over the increment
-  EXPECT_LT((analytic - numeric).norm(), 1e-5 * analytic.norm())
-      << "analytic\n" << analytic << "\nnumeric\n" << numeric;
+  EXPECT_LT((analytic - numeric).norm(), 1e-5 * analytic.norm()) << "analytic\n"
+                                                                 << analytic << "\nnumeric\n"
+                                                                 << numeric;
 }
 
 TEST(Hypoplastic, TangentAppliedToTheIncrementGivesTheRateOfEq15) {
@@ -122,8 +123,7 @@ TEST(Hypoplastic, TangentAppliedToTheIncrementGivesTheRateOfEq15) {
   d << -1.0, 0.3, 0.0, 0.3, 0.2, -0.1, 0.0, -0.1, 0.4;
   const std::vector<double> internal{0.0};
   // Act
-  const Vec6 from_tangent =
-      model.tangent(d, anisotropic_stress(), internal) * strain_to_voigt(d);
+  const Vec6 from_tangent = model.tangent(d, anisotropic_stress(), internal) * strain_to_voigt(d);
   const Vec6 from_rate = stress_to_voigt(model.objective_rate(d, anisotropic_stress(), internal));
   // Assert
   EXPECT_LT((from_tangent - from_rate).norm(), 1e-12 * from_rate.norm());
@@ -245,8 +245,7 @@ TEST(Hypoplastic, CorrectReturnsATensileStateToTheApex) {
 
 TEST(HypoplasticParameters, OutOfRangeValueIsRefusedWithKeyAndRange) {
   // Act
-  const std::string message =
-      message_of({{"Ei", 20e6}, {"nu", 0.62}, {"phi", 30.0}, {"psi", 1.0}});
+  const std::string message = message_of({{"Ei", 20e6}, {"nu", 0.62}, {"phi", 30.0}, {"psi", 1.0}});
   // Assert
   EXPECT_NE(message.find("material.sand.nu = 0.62"), std::string::npos) << message;
   EXPECT_NE(message.find("[0, 0.5)"), std::string::npos) << message;
@@ -272,8 +271,8 @@ TEST(HypoplasticParameters, FrictionAngleOutOfRangeIsRefused) {
 
 TEST(HypoplasticParameters, BothParameterSetsAreRefusedNamingTheKeys) {
   // Act
-  const std::string message = message_of({{"c1", -58.3}, {"c2", -178.5}, {"c3", -589.0},
-                                          {"c4", -182.7}, {"Ei", 21e6}, {"phi", 29.5}});
+  const std::string message = message_of(
+      {{"c1", -58.3}, {"c2", -178.5}, {"c3", -589.0}, {"c4", -182.7}, {"Ei", 21e6}, {"phi", 29.5}});
   // Assert
   EXPECT_NE(message.find("not both"), std::string::npos) << message;
   EXPECT_NE(message.find("c1, c2, c3, c4"), std::string::npos) << message;
@@ -298,9 +297,9 @@ TEST(HypoplasticParameters, DerivedConstantsAreRecordedForElementJson) {
   // Arrange: Peng 2015 Table 1, sand collapse row
   std::map<std::string, ParameterValue> resolved;
   // Act
-  const auto model = make_model("hypoplastic",
-                                {{"Ei", 20e6}, {"nu", 0.2}, {"phi", 30.0}, {"psi", 1.0}},
-                                "material.sand", &resolved);
+  const auto model =
+      make_model("hypoplastic", {{"Ei", 20e6}, {"nu", 0.2}, {"phi", 30.0}, {"psi", 1.0}},
+                 "material.sand", &resolved);
   // Assert
   EXPECT_EQ(model->name(), "hypoplastic");
   ASSERT_TRUE(resolved.count("c1") && resolved.count("c4") && resolved.count("c"));

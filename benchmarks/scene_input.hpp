@@ -1,0 +1,21 @@
+#pragma once
+// Scene loading for the program and the tests: the common loader with every material checked
+// against the constitutive registry (unknown model, missing or out-of-range parameter), so bad
+// input is refused before any work with the file and line of the offending key.
+
+#include <string>
+#include <vector>
+
+#include "common/scene_loader.hpp"
+
+namespace duet {
+
+/// The MaterialCheck that builds each material's model through constitutive::make_model.
+MaterialCheck model_material_check();
+
+Scene load_scene_checked(const std::string& path, const std::vector<std::string>& overrides = {});
+
+Scene load_scene_checked_from_string(const std::string& toml_text, const std::string& path,
+                                     const std::vector<std::string>& overrides = {});
+
+}  // namespace duet
