@@ -232,8 +232,14 @@ void add_demo_command(CLI::App& app, int& exit_code) {
       "demo",
       "the default demonstration: the coarse collapse comparison once a solver is "
       "registered, else the element tests of every soil model");
+  auto elements = std::make_shared<bool>(false);
   cmd->add_option("--out", *out, "output folder (default runs/demo)");
-  cmd->callback([out, &exit_code] {
+  cmd->add_flag("--elements", *elements, "run the element tests of every soil model instead");
+  cmd->callback([out, elements, &exit_code] {
+    if (*elements) {
+      exit_code = run_element_demo(*out);
+      return;
+    }
     if (builtin_methods().empty()) {
       std::cout << "No solver is registered in this build yet: running the element tests of "
                    "every soil model.\n";

@@ -108,8 +108,10 @@ std::string compare_markdown(const std::vector<RunSummary>& runs, double target)
       } else {
         char error[32];
         std::snprintf(error, sizeof error, "%.1f %%", 100.0 * it->second.rel_error);
-        md << ' ' << format_number(it->second.value) << " (ref "
-           << format_number(it->second.reference) << ") | " << error << " |";
+        char value[64];
+        std::snprintf(value, sizeof value, "%.4g (ref %.4g)", it->second.value,
+                      it->second.reference);
+        md << ' ' << value << " | " << error << " |";
       }
     }
     md << '\n';

@@ -52,6 +52,15 @@ def main():
                             textcoords="offset points", xytext=(4, -10), fontsize=7, color="red")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    # At least a decade on each axis, so near-equal errors are not blown up into a steep line.
+    if finite_errors:
+        low, high = min(finite_errors), max(finite_errors)
+        middle = (low * high) ** 0.5
+        ax.set_ylim(min(low / 2, middle / 3.2), max(top * 1.5, middle * 3.2))
+    times = [number(r["wall_seconds"]) for r in rows if number(r["wall_seconds"])]
+    if times:
+        middle = (min(times) * max(times)) ** 0.5
+        ax.set_xlim(min(min(times) / 1.5, middle / 3.2), max(max(times) * 1.5, middle * 3.2))
     ax.set_xlabel("wall time (s)")
     ax.set_ylabel("largest relative error of the scored measures")
     ax.set_title(title)
