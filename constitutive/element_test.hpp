@@ -78,7 +78,8 @@ int unloading_increments(const ElementTest& test);
 
 /// Runs the test: increments + 1 + unloading_increments(test) rows, the start first. Uses only
 /// the Model interface: integrate() then correct() per increment; the held stresses are found by
-/// Newton on Model::tangent, falling back to a finite-difference Jacobian of the response.
+/// Newton on Model::tangent, falling back to a finite-difference Jacobian of the response; an
+/// increment that does not converge is cut in halves (at most to 1/64) before it is a failure.
 /// Throws InputError for an invalid test and ElementTestFailure on numerical failure.
 std::vector<ElementRow> run_element_test(const Model& model, const ElementTest& test);
 
