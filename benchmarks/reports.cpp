@@ -120,10 +120,12 @@ std::string compare_markdown(const std::vector<RunSummary>& runs, double target)
     md << "\nCoarsest spacing with every scored error below " << 100.0 * target << " %:\n\n";
     for (const auto& choice : choose_for_target(runs, target)) {
       if (choice.run) {
-        md << "- " << choice.method << ": spacing " << format_number(choice.run->spacing) << " m, "
-           << choice.run->particles << " particles, " << format_number(choice.run->wall_seconds)
-           << " s wall, worst error " << format_number(100.0 * choice.run->max_rel_error())
-           << " %\n";
+        char line[200];
+        std::snprintf(line, sizeof line,
+                      "spacing %g m, %ld particles, %.3g s wall, worst error %.3g %%",
+                      choice.run->spacing, choice.run->particles, choice.run->wall_seconds,
+                      100.0 * choice.run->max_rel_error());
+        md << "- " << choice.method << ": " << line << "\n";
       } else {
         md << "- " << choice.method << ": no spacing tried meets the target\n";
       }
