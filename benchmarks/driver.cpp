@@ -86,6 +86,9 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       ++steps;
     } catch (const NumericalFailure& e) {
       failure = Failure{e.what(), time, e.particle()};
+      if (e.particle() >= 0 && static_cast<std::size_t>(e.particle()) < particles.size()) {
+        failure->position = particles.position[static_cast<std::size_t>(e.particle())];
+      }
       break;
     }
     if (auto problem = checks.check(particles, previous_position, previous_time, time)) {

@@ -44,10 +44,13 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
     if (why) *why = "no python3 with matplotlib found (install python3-matplotlib)";
     return false;
   }
-  const std::string path = std::string(DUET_SOURCE_DIR) + "/benchmarks/plot/" + script;
-  std::string command = shell_quote(python) + " " + shell_quote(path);
-  for (const auto& a : arguments) command += " " + shell_quote(a);
-  command += " 2>&1";
+  std::string path = DUET_SOURCE_DIR;
+  path.append("/benchmarks/plot/").append(script);
+  // Appends only: GCC 12 warns falsely (-Wrestrict, PR 105651) on chained string operator+.
+  std::string command = shell_quote(python);
+  command.append(" ").append(shell_quote(path));
+  for (const auto& a : arguments) command.append(" ").append(shell_quote(a));
+  command.append(" 2>&1");
   const int status = std::system(command.c_str());
   if (status != 0) {
     if (why) *why = "plot script " + script + " failed (status " + std::to_string(status) + ")";

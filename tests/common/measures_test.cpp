@@ -50,18 +50,20 @@ TEST(FrontPosition, IgnoresColumnsThinnerThanTheMinimumThickness) {
 TEST(MeasureRecorder, MaxTakesTheLargestMagnitudeAndTimeInterpolates) {
   Scene scene;
   scene.spacing = 0.01;
-  scene.bodies.push_back(Body{.name = "b"});
-  scene.measures.push_back(Measure{.name = "peak",
-                                   .kind = MeasureKind::max_displacement,
-                                   .target = "b",
-                                   .component = "x",
-                                   .at = MeasureAt::max});
-  scene.measures.push_back(Measure{.name = "half",
-                                   .kind = MeasureKind::max_displacement,
-                                   .target = "b",
-                                   .component = "x",
-                                   .at = MeasureAt::time,
-                                   .time = 0.5});
+  Body body;
+  body.name = "b";
+  scene.bodies.push_back(body);
+  Measure peak;
+  peak.name = "peak";
+  peak.kind = MeasureKind::max_displacement;
+  peak.target = "b";
+  peak.component = "x";
+  peak.at = MeasureAt::max;
+  Measure half = peak;
+  half.name = "half";
+  half.at = MeasureAt::time;
+  half.time = 0.5;
+  scene.measures = {peak, half};
   MeasureRecorder recorder(scene);
   Particles p = column_of_particles({{0.0, 0.0}});
   for (int k = 0; k <= 10; ++k) {
