@@ -16,7 +16,10 @@
 //     centre + radial_velocity = [[t, v_r], ...]
 //   [rigid_body.<name>] vertices, velocity, surface = rough | smooth | friction, friction
 //   [load.<name>] body, min, max (the box of particles that share it), force = [[t, fx, fy], ...]
-//   [measure.<name>] kind, target, component, at = end | max | series, min_thickness, scale
+//   [strength_reduction] factor (c and phi reduced, Peng 2015 eqs 39-40), rule = tangent | angle
+//   [measure.<name>] kind = front | height | reaction | wall_stress | max_displacement |
+//     displacement | period | safety_factor, target, component = x | y | magnitude,
+//     at = end | max | series | time (with time = ...), min_thickness, divide_by, scale
 //   [reference.<measure name>] value, source (required), tolerance
 //   [sph], [spfem], [spfem.implicit]: method options (common/scene.hpp has the defaults)
 
