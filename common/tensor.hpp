@@ -56,15 +56,16 @@ inline double von_mises(const Mat3& s) {
   return std::sqrt(3.0 * j2(s));
 }
 
-/// Lode angle theta in [-pi/6, pi/6] from sin(3 theta) = -(3 sqrt3 / 2) J3 / J2^(3/2).
+/// Lode angle theta in [-pi/6, pi/6], defined by sin(3 theta) = -(3 sqrt3 / 2) J3 / J2^(3/2).
 /// theta = +pi/6 on triaxial compression (tension-positive stress), -pi/6 on triaxial extension.
-/// Returns 0 for a hydrostatic state.
+/// Returns 0 for a hydrostatic state. Evaluated from the ordered principal deviatoric stresses
+/// s1 >= s2 >= s3 as tan(theta) = (2 s2 - s1 - s3) / (sqrt3 (s1 - s3)), which is equivalent and,
+/// unlike asin of the invariant ratio, well conditioned at the meridians theta = +-pi/6.
 inline double lode_angle(const Mat3& s) {
-  const double J2 = j2(s);
-  if (J2 <= 1e-300) return 0.0;
-  double x = -1.5 * std::sqrt(3.0) * j3(s) / std::pow(J2, 1.5);
-  x = std::clamp(x, -1.0, 1.0);
-  return std::asin(x) / 3.0;
+  if (j2(s) <= 1e-300) return 0.0;
+  const Eigen::SelfAdjointEigenSolver<Mat3> eigen(deviator(s), Eigen::EigenvaluesOnly);
+  const Vec3& l = eigen.eigenvalues();  // ascending: l(2) = s1, l(1) = s2, l(0) = s3
+  return std::atan((2.0 * l(1) - l(2) - l(0)) / (std::sqrt(3.0) * (l(2) - l(0))));
 }
 
 inline Mat3 sym(const Mat3& a) {

@@ -53,15 +53,17 @@ TEST(MeasureRecorder, MaxTakesTheLargestMagnitudeAndTimeInterpolates) {
   Body body;
   body.name = "b";
   scene.bodies.push_back(body);
-  Measure peak;
-  peak.name = "peak";
-  peak.kind = MeasureKind::max_displacement;
-  peak.target = "b";
-  peak.component = "x";
-  peak.at = MeasureAt::max;
-  Measure half = peak;
-  half.name = "half";
-  half.at = MeasureAt::time;
+  auto displacement_measure = [](const char* name, MeasureAt at) {
+    Measure m;
+    m.name = name;
+    m.kind = MeasureKind::max_displacement;
+    m.target = "b";
+    m.component = "x";
+    m.at = at;
+    return m;
+  };
+  const Measure peak = displacement_measure("peak", MeasureAt::max);
+  Measure half = displacement_measure("half", MeasureAt::time);
   half.time = 0.5;
   scene.measures = {peak, half};
   MeasureRecorder recorder(scene);
