@@ -11,6 +11,7 @@
 
 #include "constitutive/element_test.hpp"
 #include "constitutive/tresca.hpp"
+#include "tests/constitutive/held_stress_compression.hpp"
 
 namespace duet::constitutive {
 namespace {
@@ -35,41 +36,13 @@ struct PathEnd {
 /// prescribed (zero strain).
 PathEnd compress(const Model& model, double axial_strain, int n_increments,
                  const std::vector<int>& held) {
-  std::vector<double> internal;
-  for (const auto& v : model.internal_variables()) internal.push_back(v.initial);
   PathEnd end;
   end.stress = lateral * Mat3::Identity();
-  Vec3 d_principal(0.0, axial_strain / n_increments, 0.0);
-  const int m = static_cast<int>(held.size());
-  for (int step = 0; step < n_increments; ++step) {
-    Mat3 stress;
-    std::vector<double> work;
-    int iteration = 0;
-    for (;; ++iteration) {
-      stress = end.stress;
-      work = internal;
-      const Mat3 d_strain = d_principal.asDiagonal();
-      model.integrate(d_strain, stress, work);
-      Eigen::VectorXd residual(m);
-      for (int i = 0; i < m; ++i) residual(i) = stress(held[i], held[i]) - lateral;
-      if (residual.lpNorm<Eigen::Infinity>() <= 1e-12 * std::abs(lateral)) break;
-      if (iteration == 30) {
-        ADD_FAILURE() << "lateral Newton iteration did not converge at step " << step;
-        break;
-      }
-      const Mat6 tangent = model.tangent(d_strain, end.stress, internal);
-      Eigen::MatrixXd jacobian(m, m);
-      for (int i = 0; i < m; ++i) {
-        for (int j = 0; j < m; ++j) jacobian(i, j) = tangent(held[i], held[j]);
-      }
-      const Eigen::VectorXd correction = jacobian.fullPivLu().solve(residual);
-      for (int i = 0; i < m; ++i) d_principal(held[i]) -= correction(i);
-    }
-    end.max_newton_iterations = std::max(end.max_newton_iterations, iteration);
-    end.stress = stress;
-    internal = work;
-    end.deviator.push_back(stress(0, 0) - stress(1, 1));
-  }
+  end.max_newton_iterations = compress_holding_lateral_stress(
+      model, lateral, axial_strain, n_increments, held, [&end](const Mat3& stress, const Mat3&) {
+        end.stress = stress;
+        end.deviator.push_back(stress(0, 0) - stress(1, 1));
+      });
   return end;
 }
 
