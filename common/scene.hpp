@@ -192,7 +192,8 @@ enum class Remesh { every_step, angle };
 struct SpfemOptions {
   double alpha_factor = 1.5;
   double time_step_safety = 0.5;
-  double damping = 0.0;
+  double damping = 0.0;        // 1/s: viscous damping force -damping m v (quasi-static runs)
+  double local_damping = 0.0;  // -: local non-viscous damping, -local_damping |F| sign(v) (Cundall)
   // Stabilisation of nodal integration: weight of the smoothed-strain stabilisation term
   // (0 = pure node-based smoothing as in the slides; 0.1 is a common NS-FEM choice).
   double stabilisation = 0.0;

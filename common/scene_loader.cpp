@@ -44,8 +44,8 @@ const std::vector<std::string> kSphKeys = {"kernel",      "h_over_dp",         "
                                            "sound_speed", "wall_treatment",    "dummy_layers",
                                            "wall_stress", "integrator",        "continuity"};
 const std::vector<std::string> kSpfemKeys = {"alpha_factor",  "time_step_safety", "damping",
-                                             "stabilisation", "remesh",           "remesh_angle",
-                                             "implicit"};
+                                             "local_damping", "stabilisation",    "remesh",
+                                             "remesh_angle",  "implicit"};
 const std::vector<std::string> kImplicitKeys = {"tolerance", "max_iterations", "load_steps",
                                                 "max_step_cuts"};
 
@@ -390,6 +390,8 @@ SpfemOptions read_spfem(SectionReader& r) {
   o.time_step_safety =
       r.number("time_step_safety", o.time_step_safety, positive("a safety factor (-)"));
   o.damping = r.number("damping", o.damping, non_negative("a damping coefficient (1/s)"));
+  o.local_damping = r.number("local_damping", o.local_damping,
+                             in_closed(0.0, 1.0, "a local damping coefficient (-)"));
   o.stabilisation =
       r.number("stabilisation", o.stabilisation, non_negative("a stabilisation weight (-)"));
   o.remesh = r.choice("remesh", {"every-step", "angle"}, "every-step") == "every-step"

@@ -1,0 +1,44 @@
+#pragma once
+// The mesh of the smoothed particle finite element method (papers/004, "PFEM steps"; Yuan et al.
+// 2019; Zhang et al. 2018): a CGAL Delaunay triangulation of the particles (EPICK kernel, built
+// from a spatially sorted range), then the alpha criterion: a triangle is kept when its
+// circumradius is below alpha (alpha = alpha_factor x spacing). The kept triangles are the
+// interior faces of CGAL::Alpha_shape_2 at the same alpha (checked in the tests), found at a
+// fraction of its cost. Free surfaces, separation and re-contact appear and vanish as the cloud
+// moves. The nodes are the particles; nothing here knows of materials or stresses.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "common/tensor.hpp"
+
+namespace duet::spfem {
+
+/// Three node (particle) indices, counter-clockwise.
+using Triangle = std::array<std::int32_t, 3>;
+
+struct AlphaMesh {
+  std::vector<Triangle> triangles;      // kept faces, counter-clockwise
+  std::vector<std::uint8_t> surface;    // per node: 1 on the alpha-shape boundary (or isolated)
+  std::vector<std::int32_t> component;  // per node: connected piece of the kept mesh; -1 isolated
+  std::int32_t n_components = 0;        // pieces (bodies) of the kept mesh
+  std::size_t n_delaunay = 0;           // Delaunay faces before the alpha test
+};
+
+/// Triangulates `points` and keeps the faces whose circumradius is below `alpha` (m); fills
+/// surface nodes and connected components. Reuses the storage of `mesh`.
+void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh);
+
+/// Recomputes `surface`, `component` and `n_components` of `mesh` from its triangles (for a mesh
+/// kept across steps, or one built by hand in a test). `n_nodes` is the number of points.
+void label_mesh(std::size_t n_nodes, AlphaMesh& mesh);
+
+/// Smallest interior angle (degrees) over the triangles at the current `points`; a triangle that
+/// has turned clockwise (inverted) gives a negative value. The remesh-on-angle trigger reads it.
+double smallest_angle(const AlphaMesh& mesh, const std::vector<Vec2>& points);
+
+/// Sum of the triangle areas at `points` (m^2).
+double mesh_area(const AlphaMesh& mesh, const std::vector<Vec2>& points);
+
+}  // namespace duet::spfem

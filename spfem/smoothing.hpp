@@ -1,0 +1,40 @@
+#pragma once
+// Node-based strain smoothing (papers/004, slides "Strain smoothing technique"; Liu et al. 2009
+// NS-FEM): node k's smoothing cell collects a third of each triangle around it,
+//   A_k = sum_e A_e / 3,   b_kl = (1 / A_k) sum_e (A_e / 3) grad N_l^e,
+// so the smoothed velocity gradient at a node is L_k = sum_l v_l (x) b_kl and the internal force
+// is F_int,l = sum_k B_kl^T sigma_k A_k (plane strain, per metre of thickness). Stress and internal
+// variables stay on the nodes (the particles): nothing is mapped between meshes.
+
+#include <cstdint>
+#include <vector>
+
+#include "common/tensor.hpp"
+#include "spfem/alpha_mesh.hpp"
+
+namespace duet::spfem {
+
+/// Smoothed gradients in compressed rows: row k lists the nodes l that share a triangle with k
+/// (k itself included) and b_kl = smoothed dN_l/dx at node k.
+struct SmoothingCells {
+  std::vector<double> area;             // A_k (m^2); 0 for a node in no triangle
+  std::vector<std::int32_t> offset;     // n_nodes + 1 row starts
+  std::vector<std::int32_t> column;     // node l of each entry
+  std::vector<Vec2> gradient;           // b_kl (1/m)
+  std::vector<std::int32_t> transpose;  // for entry (k, l): the index of entry (l, k)
+};
+
+/// Builds the cells of `mesh` at the current `points`. Reuses the storage of `cells`.
+void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
+                           SmoothingCells& cells);
+
+/// L_k(i, j) = dv_i/dx_j = sum_l v_l,i b_kl,j at every node (zero for a node in no triangle).
+void smoothed_velocity_gradients(const SmoothingCells& cells, const std::vector<Vec2>& velocity,
+                                 std::vector<Mat2>& gradient);
+
+/// F_int,l = sum_k A_k sigma_k b_kl (in-plane part of sigma), gathered per node l without races;
+/// the equation of motion is m a = F_ext - F_int.
+void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stress,
+                     std::vector<Vec2>& force);
+
+}  // namespace duet::spfem
