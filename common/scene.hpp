@@ -199,6 +199,9 @@ struct SpfemOptions {
   double stabilisation = 0.0;
   Remesh remesh = Remesh::every_step;
   double remesh_angle = 15.0;  // deg
+  // The particles are cell-centred (shared with SPH), so the alpha shape lies dp/2 inside the
+  // material; true: each surface node's smoothing cell is extended over that dp/2 layer.
+  bool boundary_layer = true;
 };
 
 /// [spfem.implicit] (Zhang 2018: Newton-Raphson with load steps and step cutting).

@@ -398,6 +398,7 @@ SpfemOptions read_spfem(SectionReader& r) {
                  ? Remesh::every_step
                  : Remesh::angle;
   o.remesh_angle = r.number("remesh_angle", o.remesh_angle, in_closed(0.0, 90.0, "an angle (deg)"));
+  o.boundary_layer = r.boolean("boundary_layer", o.boundary_layer);
   r.finish({"implicit"});
   return o;
 }
