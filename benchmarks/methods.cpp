@@ -1,5 +1,6 @@
 #include "benchmarks/methods.hpp"
 
+#include "spfem/method.hpp"
 #include "sph/method.hpp"
 
 namespace duet {
@@ -7,6 +8,7 @@ namespace duet {
 void register_builtin_methods(MethodRegistry& registry) {
   // One line per method.
   sph::register_sph(registry);
+  spfem::register_espfem(registry);
 }
 
 const MethodRegistry& builtin_methods() {

@@ -22,6 +22,9 @@ struct SmoothingCells {
   std::vector<std::int32_t> column;     // node l of each entry
   std::vector<Vec2> gradient;           // b_kl (1/m)
   std::vector<std::int32_t> transpose;  // for entry (k, l): the index of entry (l, k)
+  // Node -> triangles adjacency (CSR), built first and kept so its storage is reused each step.
+  std::vector<std::int32_t> triangle_offset;  // n_nodes + 1 starts into node_triangles
+  std::vector<std::int32_t> node_triangles;   // indices into mesh.triangles around each node
 };
 
 /// Builds the cells of `mesh` at the current `points`. Reuses the storage of `cells`.

@@ -1,0 +1,427 @@
+#include "spfem/explicit_solver.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+#include "common/input_error.hpp"
+#include "common/solver.hpp"
+#include "constitutive/objective.hpp"
+
+namespace duet::spfem {
+
+namespace {
+
+// Below this many nodes (or triangles) a loop runs on one thread: a parallel region costs more
+// than the work, and far more when the cores are shared.
+constexpr std::size_t kParallelMin = 2048;
+
+Mat3 embed(const Mat2& a) {
+  Mat3 b = Mat3::Zero();
+  b.topLeftCorner<2, 2>() = a;
+  return b;
+}
+
+Mat2 sym2(const Mat2& a) {
+  return 0.5 * (a + a.transpose());
+}
+
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Gradients of the linear shape functions of a triangle (counter-clockwise) and its area.
+std::array<Vec2, 3> shape_gradients(const Vec2& x0, const Vec2& x1, const Vec2& x2, double& area) {
+  const double twice = cross(x1 - x0, x2 - x0);
+  area = 0.5 * twice;
+  // grad N_i = (y_j - y_k, x_k - x_j) / (2 A) for (i, j, k) cyclic
+  return {Vec2(x1.y() - x2.y(), x2.x() - x1.x()) / twice,
+          Vec2(x2.y() - x0.y(), x0.x() - x2.x()) / twice,
+          Vec2(x0.y() - x1.y(), x1.x() - x0.x()) / twice};
+}
+
+}  // namespace
+
+ExplicitSolver::ExplicitSolver(EspfemSetup setup) : setup_(std::move(setup)) {
+  const duet::SpfemOptions& o = setup_.options;
+  if (!(setup_.spacing > 0.0)) throw InputError("spfem: particle spacing must be > 0 m");
+  if (!(o.alpha_factor > 0.0)) throw InputError("spfem.alpha_factor must be > 0");
+  if (!(o.time_step_safety > 0.0)) throw InputError("spfem.time_step_safety must be > 0");
+}
+
+void ExplicitSolver::initialise(Particles& particles) {
+  const std::size_t n = particles.size();
+  n_internal_.clear();
+  for (const auto& model : setup_.models) n_internal_.push_back(model->internal_variables().size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const int m = particles.material[i];
+    if (m < 0 || static_cast<std::size_t>(m) >= setup_.models.size()) {
+      throw std::invalid_argument("espfem: particle without a material model");
+    }
+    if (n_internal_[static_cast<std::size_t>(m)] > particles.internal.width) {
+      throw std::invalid_argument("espfem: internal variable block narrower than the model needs");
+    }
+  }
+  geometry_.clear();
+  for (const NodeBoundary& b : setup_.boundaries) {
+    geometry_.push_back(orient_boundary(b, particles.position, 2.0 * setup_.spacing));
+  }
+  boundary_force_.assign(setup_.boundaries.size(), Vec2::Zero());
+  velocity_gradient_.assign(n, Mat2::Zero());
+  wave_speed_.assign(n, 0.0);
+  internal_force_.assign(n, Vec2::Zero());
+  stabilisation_force_.assign(n, Vec2::Zero());
+  external_force_.assign(n, Vec2::Zero());
+  scratch_stress_.assign(n, Mat3::Zero());
+  scratch_force_.assign(n, Vec2::Zero());
+  have_mesh_ = false;
+  counters_ = EspfemCounters{};
+  energy_reference_set_ = false;
+  timers_.reset();
+  // Wave speeds of the initial state, for the first time step.
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto m = static_cast<std::size_t>(particles.material[i]);
+    const constitutive::ElasticModuli e = setup_.models[m]->moduli(
+        particles.stress[i], std::span<const double>(particles.internal.of(i), n_internal_[m]));
+    wave_speed_[i] = std::sqrt(std::max(e.bulk + 4.0 * e.shear / 3.0, 0.0) / particles.density[i]);
+  }
+}
+
+void ExplicitSolver::update_mesh(const Particles& particles) {
+  const duet::SpfemOptions& o = setup_.options;
+  const std::vector<Vec2>& x = particles.position;
+  bool remesh = !have_mesh_ || o.remesh == Remesh::every_step;
+  if (!remesh) {
+    // Remesh on angle: keep the connectivity while the smallest angle stays above the threshold;
+    // an inverted triangle (negative angle) always forces a new mesh.
+    const double angle = smallest_angle(mesh_, x);
+    if (angle < o.remesh_angle) {
+      remesh = true;
+      if (angle <= 0.0) ++counters_.forced_remeshes;
+    }
+  }
+  if (remesh) {
+    build_alpha_mesh(x, o.alpha_factor * setup_.spacing, mesh_);
+    have_mesh_ = true;
+    ++counters_.remeshes;
+    // Node -> triangle rows (counting sort), for race-free gathers of per-triangle terms.
+    const std::size_t n = x.size();
+    node_triangle_offset_.assign(n + 1, 0);
+    for (const Triangle& t : mesh_.triangles) {
+      for (const std::int32_t a : t) ++node_triangle_offset_[static_cast<std::size_t>(a) + 1];
+    }
+    for (std::size_t i = 0; i < n; ++i) node_triangle_offset_[i + 1] += node_triangle_offset_[i];
+    node_triangle_.resize(3 * mesh_.triangles.size());
+    std::vector<std::int32_t> fill(node_triangle_offset_.begin(), node_triangle_offset_.end() - 1);
+    for (std::size_t e = 0; e < mesh_.triangles.size(); ++e) {
+      for (const std::int32_t a : mesh_.triangles[e]) {
+        node_triangle_[static_cast<std::size_t>(fill[static_cast<std::size_t>(a)]++)] =
+            static_cast<std::int32_t>(e);
+      }
+    }
+    counters_.triangles = mesh_.triangles.size();
+    counters_.components = mesh_.n_components;
+    counters_.surface_nodes = static_cast<std::size_t>(
+        std::count(mesh_.surface.begin(), mesh_.surface.end(), std::uint8_t{1}));
+    counters_.isolated_nodes_max = std::max(
+        counters_.isolated_nodes_max,
+        static_cast<std::size_t>(std::count(mesh_.component.begin(), mesh_.component.end(), -1)));
+  }
+  // papers/004 smoothing slides: A_k = sum_j A_e^j / 3, b_lh(x_k) = (1 / A_k) sum_j A_e^j N_l,h^j /
+  // 3
+  build_smoothing_cells(mesh_, x, cells_);
+  if (!mesh_.triangles.empty()) {
+    counters_.smallest_angle = std::min(counters_.smallest_angle, smallest_angle(mesh_, x));
+  }
+}
+
+double ExplicitSolver::time_step(const Particles& particles) const {
+  const std::vector<Vec2>& x = particles.position;
+  double l_min = std::numeric_limits<double>::infinity();
+  const std::size_t n_triangles = mesh_.triangles.size();
+#pragma omp parallel for schedule(static) reduction(min : l_min) if (n_triangles > kParallelMin)
+  for (std::size_t e = 0; e < n_triangles; ++e) {
+    const Triangle& t = mesh_.triangles[e];
+    const Vec2& a = x[static_cast<std::size_t>(t[0])];
+    const Vec2& b = x[static_cast<std::size_t>(t[1])];
+    const Vec2& c = x[static_cast<std::size_t>(t[2])];
+    const double twice_area = std::abs(cross(b - a, c - a));
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    l_min = std::min(l_min, twice_area / longest);  // smallest altitude
+  }
+  if (n_triangles == 0) l_min = setup_.spacing;
+  double c_max = 0.0;
+  for (const double c : wave_speed_) c_max = std::max(c_max, c);
+  if (!(c_max > 0.0)) {
+    throw NumericalFailure("espfem: no positive wave speed (every node has zero stiffness)");
+  }
+  // papers/004 explicit cycle step 3: dt_cr = alpha l_min / c
+  return setup_.options.time_step_safety * l_min / c_max;
+}
+
+void ExplicitSolver::update_stress(Particles& particles, double dt) {
+  const std::size_t n = particles.size();
+  // papers/004 explicit cycle step 4: smoothed strain (rate) of the nodes
+  smoothed_velocity_gradients(cells_, particles.velocity, velocity_gradient_);
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto m = static_cast<std::size_t>(particles.material[i]);
+    const constitutive::Model& model = *setup_.models[m];
+    const std::span<double> internal(particles.internal.of(i), n_internal_[m]);
+    if (cells_.area[i] > 0.0) {
+      const Mat3 l = embed(velocity_gradient_[i]);
+      const Mat3 d = sym(l);
+      // papers/004 explicit cycle step 5: sigma_dot = H(eps_dot, kappa), objective (Jaumann)
+      constitutive::update_stress(model, d * dt, skew(l) * dt, particles.stress[i], internal);
+      model.correct(particles.stress[i], internal);
+      particles.strain[i] += d * dt;
+      particles.volume[i] *= std::exp(d.trace() * dt);
+      particles.density[i] = particles.mass[i] / particles.volume[i];
+    }
+    const constitutive::ElasticModuli e = model.moduli(particles.stress[i], internal);
+    // P-wave speed c = sqrt((K + 4 G / 3) / rho)
+    wave_speed_[i] = std::sqrt(std::max(e.bulk + 4.0 * e.shear / 3.0, 0.0) / particles.density[i]);
+  }
+}
+
+void ExplicitSolver::add_stabilisation(const Particles& particles) {
+  // Stabilised nodal integration, viscous form: per triangle e the exact strain rate d_e of the
+  // linear element minus the mean of its nodes' smoothed strain rates, sigma_s,e = s rho c l_e
+  // (d_e - mean_k d_k). The force is the work conjugate of (d_e - mean_k d_k):
+  //   F_l = sum_e A_e sigma_s,e grad N_l^e - sum_k S_k b_kl,  S_k = sum_{e at k} A_e sigma_s,e / 3,
+  // so its power is sum_e A_e s rho c l_e |d_e - mean d_k|^2 >= 0, and it vanishes for every
+  // linear velocity field (patch test).
+  const double s = setup_.options.stabilisation;
+  const std::vector<Vec2>& x = particles.position;
+  const std::vector<Vec2>& v = particles.velocity;
+  const std::size_t n_triangles = mesh_.triangles.size();
+  triangle_stress_.resize(n_triangles);
+  triangle_grad_.resize(n_triangles);
+  std::vector<double>& area = triangle_area_;
+  area.resize(n_triangles);
+#pragma omp parallel for schedule(static) if (n_triangles > kParallelMin)
+  for (std::size_t e = 0; e < n_triangles; ++e) {
+    const Triangle& t = mesh_.triangles[e];
+    const auto a = static_cast<std::size_t>(t[0]);
+    const auto b = static_cast<std::size_t>(t[1]);
+    const auto c = static_cast<std::size_t>(t[2]);
+    triangle_grad_[e] = shape_gradients(x[a], x[b], x[c], area[e]);
+    Mat2 l_e = Mat2::Zero();
+    for (int k = 0; k < 3; ++k) {
+      l_e += v[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])] *
+             triangle_grad_[e][static_cast<std::size_t>(k)].transpose();
+    }
+    const Mat2 mean_smoothed =
+        sym2(velocity_gradient_[a] + velocity_gradient_[b] + velocity_gradient_[c]) / 3.0;
+    const double rho = (particles.density[a] + particles.density[b] + particles.density[c]) / 3.0;
+    const double speed = (wave_speed_[a] + wave_speed_[b] + wave_speed_[c]) / 3.0;
+    const double length = std::sqrt(2.0 * std::abs(area[e]));
+    triangle_stress_[e] = s * rho * speed * length * (sym2(l_e) - mean_smoothed);
+  }
+  const std::size_t n = particles.size();
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::size_t l = 0; l < n; ++l) {
+    Vec2 f = Vec2::Zero();
+    Mat2 s_l = Mat2::Zero();
+    for (std::int32_t r = node_triangle_offset_[l]; r < node_triangle_offset_[l + 1]; ++r) {
+      const auto e = static_cast<std::size_t>(node_triangle_[static_cast<std::size_t>(r)]);
+      const Triangle& t = mesh_.triangles[e];
+      const std::size_t k = t[0] == static_cast<std::int32_t>(l)   ? 0
+                            : t[1] == static_cast<std::int32_t>(l) ? 1
+                                                                   : 2;
+      f += area[e] * (triangle_stress_[e] * triangle_grad_[e][k]);
+      s_l += area[e] / 3.0 * triangle_stress_[e];
+    }
+    stabilisation_force_[l] = f;
+    scratch_stress_[l] = cells_.area[l] > 0.0 ? embed(s_l / cells_.area[l]) : Mat3::Zero();
+  }
+  // sum_k S_k b_kl = sum_k A_k (S_k / A_k) b_kl: the smoothed internal-force operator
+  internal_forces(cells_, scratch_stress_, scratch_force_);
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::size_t l = 0; l < n; ++l) stabilisation_force_[l] -= scratch_force_[l];
+}
+
+void ExplicitSolver::assemble_forces(const Particles& particles) {
+  // papers/004 explicit cycle step 6: F_int = sum_k B_k^T sigma_k A_k
+  internal_forces(cells_, particles.stress, internal_force_);
+  if (setup_.options.stabilisation > 0.0 && !mesh_.triangles.empty()) {
+    add_stabilisation(particles);
+  } else {
+    std::fill(stabilisation_force_.begin(), stabilisation_force_.end(), Vec2::Zero());
+  }
+}
+
+void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
+  const duet::SpfemOptions& o = setup_.options;
+  const std::size_t n = particles.size();
+  const std::size_t n_boundaries = setup_.boundaries.size();
+  for (std::size_t b = 0; b < n_boundaries; ++b) {
+    update_geometry(setup_.boundaries[b], std::max(time, 0.0), geometry_[b]);
+    if (settling_) {
+      std::fill(geometry_[b].point_velocity.begin(), geometry_[b].point_velocity.end(),
+                Vec2::Zero());
+    }
+  }
+  const double reach = 0.5 * setup_.spacing * (1.0 + 1e-6);
+  const double depth = setup_.spacing;
+  const double viscous = o.damping + damping_;
+  const int n_threads = omp_get_max_threads();
+  std::vector<Vec2> impulse(static_cast<std::size_t>(n_threads) * n_boundaries, Vec2::Zero());
+  long n_contacts = 0;
+
+#pragma omp parallel reduction(+ : n_contacts) if (n > kParallelMin)
+  {
+    std::vector<NodeContact> found;
+    Vec2* my_impulse =
+        impulse.data() + static_cast<std::size_t>(omp_get_thread_num()) * n_boundaries;
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m = particles.mass[i];
+      const Vec2 v = particles.velocity[i];
+      // papers/004 explicit cycle step 7: M a = F_ext - F_int (+ body force m g)
+      Vec2 f = external_force_[i] + m * setup_.gravity - internal_force_[i] -
+               stabilisation_force_[i] - viscous * m * v;
+      if (o.local_damping > 0.0) {
+        // Cundall local non-viscous damping: -alpha |F| sign(v), per component
+        for (int c = 0; c < 2; ++c) {
+          const double sign = v[c] > 0.0 ? 1.0 : (v[c] < 0.0 ? -1.0 : 0.0);
+          f[c] -= o.local_damping * std::abs(f[c]) * sign;
+        }
+      }
+      Vec2 v_new = v + dt * f / m;  // central difference: velocity first
+      found.clear();
+      for (std::size_t b = 0; b < n_boundaries; ++b) {
+        find_contacts(geometry_[b], setup_.boundaries[b].rigid_body, static_cast<std::int32_t>(i),
+                      static_cast<std::int32_t>(b), particles.position[i], reach, depth, found);
+      }
+      for (const NodeContact& c : found) {
+        const NodeBoundary& b = setup_.boundaries[static_cast<std::size_t>(c.boundary)];
+        const Vec2 dv = constrain_velocity(c, b.condition, b.friction, v_new);
+        // Force of the soil on the boundary: m (a_free - a_constrained)
+        my_impulse[c.boundary] -= m * dv / dt;
+        if (c.distance < 0.0) {
+          // Crossed: back onto the contact distance.
+          const Vec2 back = (reach - c.distance) * c.normal;
+          particles.position[i] += back;
+          particles.displacement[i] += back;
+        }
+      }
+      n_contacts += static_cast<long>(found.size());
+      particles.velocity[i] = v_new;
+      particles.position[i] += dt * v_new;  // then position
+      particles.displacement[i] += dt * v_new;
+    }
+  }
+  for (std::size_t b = 0; b < n_boundaries; ++b) {
+    Vec2 f = Vec2::Zero();
+    for (int t = 0; t < n_threads; ++t)
+      f += impulse[static_cast<std::size_t>(t) * n_boundaries + b];
+    boundary_force_[b] = f;
+  }
+  counters_.contacts_max = std::max(counters_.contacts_max, n_contacts);
+}
+
+double ExplicitSolver::energy(const Particles& particles) const {
+  double e = 0.0;
+  const std::size_t n = particles.size();
+#pragma omp parallel for schedule(static) reduction(+ : e) if (n > kParallelMin)
+  for (std::size_t i = 0; i < n; ++i) {
+    e += 0.5 * particles.mass[i] * particles.velocity[i].squaredNorm();
+    if (i < cells_.area.size()) {
+      e += 0.5 * cells_.area[i] * contract(particles.stress[i], particles.strain[i]);
+    }
+  }
+  return e;
+}
+
+double ExplicitSolver::step(Particles& particles, double time) {
+  {
+    ScopedTimer t(timers_, Phase::mesh);
+    update_mesh(particles);
+  }
+  double dt = 0.0;
+  {
+    ScopedTimer t(timers_, Phase::constitutive);
+    dt = time_step(particles);
+    update_stress(particles, dt);
+  }
+  {
+    ScopedTimer t(timers_, Phase::forces);
+    assemble_forces(particles);
+  }
+  {
+    ScopedTimer t(timers_, Phase::integration);
+    integrate(particles, time, dt);
+  }
+  ScopedTimer checks(timers_, Phase::other);
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (!particles.position[i].allFinite() || !particles.velocity[i].allFinite() ||
+        !particles.stress[i].allFinite()) {
+      throw NumericalFailure("non-finite node state after the explicit SPFEM update",
+                             static_cast<long>(i));
+    }
+  }
+  counters_.dt_min = counters_.steps == 0 ? dt : std::min(counters_.dt_min, dt);
+  counters_.dt_max = std::max(counters_.dt_max, dt);
+  ++counters_.steps;
+  if (!settling_) {
+    const double e = energy(particles);
+    if (!energy_reference_set_) {
+      counters_.energy_reference = e;
+      energy_reference_set_ = true;
+    } else if (counters_.energy_reference > 0.0) {
+      counters_.energy_drift_max =
+          std::max(counters_.energy_drift_max,
+                   std::abs(e - counters_.energy_reference) / counters_.energy_reference);
+    }
+  }
+  return dt;
+}
+
+void ExplicitSolver::settle(Particles& particles, double duration, double damping) {
+  damping_ = damping;
+  settling_ = true;
+  double t = -duration;
+  while (t < 0.0) t += step(particles, t);
+  damping_ = 0.0;
+  settling_ = false;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    particles.velocity[i] = Vec2::Zero();
+    particles.displacement[i] = Vec2::Zero();
+    particles.strain[i] = Mat3::Zero();
+  }
+  energy_reference_set_ = false;
+}
+
+Json ExplicitSolver::diagnostics() const {
+  const EspfemCounters& c = counters_;
+  Json j = Json::object();
+  j["steps"] = c.steps;
+  j["remeshes"] = c.remeshes;
+  j["forced_remeshes"] = c.forced_remeshes;
+  j["remesh"] = to_string(setup_.options.remesh);
+  j["triangles"] = static_cast<long>(c.triangles);
+  j["surface_nodes"] = static_cast<long>(c.surface_nodes);
+  j["components"] = static_cast<long>(c.components);
+  j["isolated_nodes_max"] = static_cast<long>(c.isolated_nodes_max);
+  j["dt_min"] = c.dt_min;
+  j["dt_max"] = c.dt_max;
+  j["smallest_angle"] = c.smallest_angle;
+  j["contacts_max"] = c.contacts_max;
+  j["stabilisation"] = setup_.options.stabilisation;
+  j["energy_reference"] = c.energy_reference;
+  j["energy_drift_max"] = c.energy_drift_max;
+  const double steps = static_cast<double>(std::max(c.steps, 1L));
+  j["mesh_seconds_per_step"] = timers_.seconds(Phase::mesh) / steps;
+  const double total = timers_.total_seconds();
+  j["node_steps_per_second"] =
+      total > 0.0 ? static_cast<double>(velocity_gradient_.size()) * steps / total : 0.0;
+  return j;
+}
+
+}  // namespace duet::spfem

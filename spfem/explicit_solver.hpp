@@ -1,0 +1,125 @@
+#pragma once
+// The explicit SPFEM step (papers/004, "Computational cycle of eSPFEM", Algorithm 1; Yuan et al.
+// 2019): (re)mesh the nodes (Delaunay + alpha shape), build the node-based smoothing cells,
+// critical time step dt = alpha l_min / c (step 3), smoothed velocity gradients (step 4), stress
+// update through the shared constitutive library (step 5), internal forces (step 6), M a = F_ext -
+// F_int and the central-difference update of velocities then positions (step 7). Nodes are the
+// particles: stress and internal variables live on them. This class knows nothing of the scene
+// file: spfem/method.cpp translates a Scene into an EspfemSetup.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "common/json.hpp"
+#include "common/particles.hpp"
+#include "common/scene.hpp"
+#include "common/tensor.hpp"
+#include "common/timers.hpp"
+#include "constitutive/model.hpp"
+#include "spfem/alpha_mesh.hpp"
+#include "spfem/node_contact.hpp"
+#include "spfem/smoothing.hpp"
+
+namespace duet::spfem {
+
+/// The method options are the scene's [spfem] section (common/scene.hpp): alpha_factor,
+/// time_step_safety, damping (viscous, 1/s), local_damping (Cundall, -), stabilisation (-),
+/// remesh every-step | angle, remesh_angle (deg).
+struct EspfemSetup {
+  duet::SpfemOptions options;
+  double spacing = 0.0;                                      // dp, m
+  Vec2 gravity = Vec2::Zero();                               // m/s^2
+  std::vector<std::unique_ptr<constitutive::Model>> models;  // by material index
+  std::vector<NodeBoundary> boundaries;                      // walls, then rigid bodies
+};
+
+struct EspfemCounters {
+  long steps = 0;
+  long remeshes = 0;
+  long forced_remeshes = 0;  // angle trigger found an inverted triangle
+  std::size_t triangles = 0;
+  std::size_t surface_nodes = 0;
+  int components = 0;
+  std::size_t isolated_nodes_max = 0;
+  double dt_min = 0.0;
+  double dt_max = 0.0;
+  double smallest_angle = 180.0;  // deg, smallest seen on a mesh in use
+  long contacts_max = 0;
+  double energy_reference = 0.0;  // kinetic + 0.5 sum A_k sigma:eps after the first step
+  double energy_drift_max = 0.0;  // max |E - E_ref| / E_ref since then
+};
+
+class ExplicitSolver {
+ public:
+  explicit ExplicitSolver(EspfemSetup setup);
+
+  /// Orients the boundaries, sizes every buffer. Particles must have position, velocity, mass,
+  /// volume, density, stress, material and internal variables set.
+  void initialise(Particles& particles);
+
+  /// Advances one step from `time`; returns dt. Throws NumericalFailure (common/solver.hpp).
+  double step(Particles& particles, double time);
+
+  /// Gravity loading: steps for `duration` seconds with an added viscous damping -damping m v
+  /// (1/s) and walls held still, then zeroes velocities, displacements and strains.
+  void settle(Particles& particles, double duration, double damping);
+
+  /// External force on each node (N/m), e.g. a scene load; zero unless set. Read every step.
+  std::vector<Vec2>& external_force() { return external_force_; }
+
+  /// Force of the soil on each boundary of the setup (N/m), in the order of setup.boundaries.
+  const std::vector<Vec2>& boundary_forces() const { return boundary_force_; }
+  const std::vector<NodeBoundary>& boundaries() const { return setup_.boundaries; }
+  const Timers& timers() const { return timers_; }
+  const EspfemCounters& counters() const { return counters_; }
+  const AlphaMesh& mesh() const { return mesh_; }
+  const SmoothingCells& cells() const { return cells_; }
+  /// Kinetic energy plus 0.5 sum_k A_k sigma_k : eps_k (the stored energy of a linear elastic
+  /// body from a stress-free state), on the current mesh.
+  double energy(const Particles& particles) const;
+  /// Counters and timings for metrics.json.
+  Json diagnostics() const;
+
+ private:
+  void update_mesh(const Particles& particles);
+  double time_step(const Particles& particles) const;
+  void update_stress(Particles& particles, double dt);
+  void assemble_forces(const Particles& particles);
+  void add_stabilisation(const Particles& particles);
+  void integrate(Particles& particles, double time, double dt);
+
+  EspfemSetup setup_;
+  AlphaMesh mesh_;
+  SmoothingCells cells_;
+  bool have_mesh_ = false;
+  std::vector<std::size_t> n_internal_;  // per material
+
+  // Node -> triangles (compressed rows), rebuilt with the mesh.
+  std::vector<std::int32_t> node_triangle_offset_;
+  std::vector<std::int32_t> node_triangle_;
+
+  std::vector<Mat2> velocity_gradient_;
+  std::vector<double> wave_speed_;  // per node, m/s
+  std::vector<Vec2> internal_force_;
+  std::vector<Vec2> stabilisation_force_;
+  std::vector<Vec2> external_force_;
+  std::vector<Mat3> scratch_stress_;
+  std::vector<Vec2> scratch_force_;
+  std::vector<double> triangle_area_;
+  std::vector<Mat2> triangle_stress_;               // stabilising stress per triangle
+  std::vector<std::array<Vec2, 3>> triangle_grad_;  // grad N_a per triangle
+
+  std::vector<BoundaryGeometry> geometry_;
+  std::vector<NodeContact> contacts_;
+  std::vector<Vec2> boundary_force_;
+
+  double damping_ = 0.0;  // 1/s, only while settling
+  bool settling_ = false;
+  Timers timers_;
+  EspfemCounters counters_;
+  bool energy_reference_set_ = false;
+};
+
+}  // namespace duet::spfem

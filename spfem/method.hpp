@@ -1,0 +1,16 @@
+#pragma once
+// The explicit SPFEM as the driver sees it: a Solver built from a Scene (walls, rigid bodies,
+// loads, [spfem] options), registered under the name "espfem".
+
+#include "common/solver.hpp"
+
+namespace duet::spfem {
+
+/// Adds {"espfem", ..., make} to the registry.
+void register_espfem(MethodRegistry& registry);
+
+}  // namespace duet::spfem
+
+namespace duet {
+using spfem::register_espfem;
+}  // namespace duet

@@ -1,0 +1,80 @@
+#pragma once
+// Walls and rigid bodies acting on the nodes of the explicit SPFEM (papers/004 explicit cycle,
+// step 7, with the boundary conditions applied to the nodal velocities). A node is in contact
+// with a boundary segment when it lies within half a spacing of it on the soil side (the lattice
+// puts the first row of nodes dp/2 off a wall) or has just crossed it. Conditions:
+//  - bonded (a no-slip wall): the node moves with the wall; it is fixed to it and never released,
+//    so a clamp carries tension (bar, cantilever);
+//  - rough (a rough rigid body): stick while approaching, released when it would move away;
+//  - smooth (a free-slip wall, a smooth rigid body): the normal relative velocity is removed while
+//    approaching, the tangential one is free; released when it would move away;
+//  - friction (a frictional rigid body): as smooth, with a Coulomb tangential impulse capped by
+//    mu times the normal impulse.
+// The force of the soil on a boundary is the sum over its nodes of m (a_free - a_constrained).
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/scene.hpp"
+#include "common/tensor.hpp"
+
+namespace duet::spfem {
+
+enum class NodeCondition { bonded, rough, smooth, friction };
+
+/// A wall or a rigid body as the nodes see it. Translating (`velocity`) or, for a radial wall,
+/// every point moving away from `centre` at the radial speed of `radial_velocity` (cavity).
+struct NodeBoundary {
+  std::string name;
+  std::vector<Vec2> polyline;  // m, at t = 0; a closed outline repeats its first point
+  bool rigid_body = false;     // closed counter-clockwise outline, soil outside
+  NodeCondition condition = NodeCondition::bonded;
+  double friction = 0.0;  // Coulomb mu (condition friction)
+  Schedule velocity;      // translation, m/s
+  bool radial = false;
+  Vec2 centre = Vec2::Zero();
+  Schedule radial_velocity;  // knots (t, v_r, 0)
+};
+
+/// A boundary's geometry at one time: its points, per segment the unit normal into the soil and
+/// the velocity of every point.
+struct BoundaryGeometry {
+  std::vector<Vec2> points;
+  std::vector<int> side;  // +1: the soil lies left of the segment, -1: right
+  std::vector<Vec2> normals;
+  std::vector<Vec2> point_velocity;
+};
+
+/// Points and point velocities of `boundary` at time t (normals from the stored sides).
+void update_geometry(const NodeBoundary& boundary, double t, BoundaryGeometry& geometry);
+
+/// Geometry at t = 0 with each segment's soil side: outside for a rigid body; for a wall, the side
+/// holding more of the nodes within `reach` of the segment.
+BoundaryGeometry orient_boundary(const NodeBoundary& boundary, std::span<const Vec2> nodes,
+                                 double reach);
+
+/// One node touching one boundary: the contact normal (into the soil), its signed distance
+/// (negative: crossed) and the boundary's velocity at the contact point.
+struct NodeContact {
+  std::int32_t node = -1;
+  std::int32_t boundary = -1;
+  Vec2 normal = Vec2::Zero();
+  double distance = 0.0;
+  Vec2 boundary_velocity = Vec2::Zero();
+};
+
+/// Contacts of `x` with the boundary: every segment it projects onto within [-depth, reach] of
+/// the line on the soil side; for a rigid body also a convex vertex within `reach` when the node
+/// projects onto none of its segments. Appends to `out`.
+void find_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32_t node,
+                   std::int32_t boundary, const Vec2& x, double reach, double depth,
+                   std::vector<NodeContact>& out);
+
+/// Applies one contact to the node's velocity after the free update, `velocity` (in and out),
+/// following the condition; returns the velocity change it made (the impulse per unit mass).
+Vec2 constrain_velocity(const NodeContact& contact, NodeCondition condition, double friction,
+                        Vec2& velocity);
+
+}  // namespace duet::spfem

@@ -1,0 +1,217 @@
+#include "spfem/smoothing.hpp"
+
+#include <array>
+#include <cassert>
+#include <cstddef>
+
+namespace duet::spfem {
+namespace {
+
+using Index = std::int32_t;
+
+// In-plane vector turned a quarter turn counter-clockwise: (x, y) -> (-y, x).
+Vec2 quarter_turn(const Vec2& a) {
+  return Vec2(-a.y(), a.x());
+}
+
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+// Linear triangle (a, b, c) counter-clockwise, signed area A_e = (x_b - x_a) x (x_c - x_a) / 2.
+// N_a = [x_b y_c - x_c y_b + (y_b - y_c) x + (x_c - x_b) y] / (2 A_e) (zero on edge bc, one at a),
+// so grad N_a = (y_b - y_c, x_c - x_b) / (2 A_e): the opposite edge x_c - x_b turned a quarter
+// turn counter-clockwise, over 2 A_e (it points from edge bc towards a, length 1 / height).
+// What a triangle adds to b_kl A_k is (A_e / 3) grad N_l^e = quarter_turn(opposite edge of l) / 6:
+// the area cancels.
+struct TriangleTerms {
+  double area = 0.0;                      // A_e (m^2)
+  std::array<Vec2, 3> weighted_gradient;  // (A_e / 3) grad N_corner^e (m)
+};
+
+TriangleTerms triangle_terms(const Triangle& t, const std::vector<Vec2>& points) {
+  const Vec2& a = points[t[0]];
+  const Vec2& b = points[t[1]];
+  const Vec2& c = points[t[2]];
+  TriangleTerms terms;
+  terms.area = 0.5 * cross(b - a, c - a);
+  // papers/004 "Strain smoothing technique": (1/3) A_e^j N_l,h^j for l = a, b, c
+  terms.weighted_gradient = {quarter_turn(c - b) / 6.0, quarter_turn(a - c) / 6.0,
+                             quarter_turn(b - a) / 6.0};
+  return terms;
+}
+
+// Node -> triangles adjacency in CSR: counting pass, running sum, fill pass.
+void build_adjacency(const std::vector<Triangle>& triangles, std::size_t n_nodes,
+                     SmoothingCells& cells) {
+  std::vector<Index>& start = cells.triangle_offset;
+  start.assign(n_nodes + 1, 0);
+  for (const Triangle& t : triangles) {
+    for (const Index node : t) ++start[node];
+  }
+  for (std::size_t k = 1; k <= n_nodes; ++k) start[k] += start[k - 1];  // start[k] = end of row k
+  cells.node_triangles.resize(static_cast<std::size_t>(start[n_nodes]));
+  for (std::size_t e = triangles.size(); e-- > 0;) {
+    for (const Index node : triangles[e]) cells.node_triangles[--start[node]] = Index(e);
+  }
+  // start[k] is now the start of row k and start[n_nodes] the total.
+}
+
+// Nodes other than k of the triangles around k, each counted once, searching the earlier
+// triangles (no storage: for a node of very high degree).
+Index count_neighbours_in_place(const SmoothingCells& cells, const std::vector<Triangle>& triangles,
+                                std::size_t k) {
+  const Index first = cells.triangle_offset[k];
+  const Index last = cells.triangle_offset[k + 1];
+  Index count = 0;
+  for (Index i = first; i < last; ++i) {
+    for (const Index node : triangles[cells.node_triangles[i]]) {
+      if (node == Index(k)) continue;
+      bool seen = false;
+      for (Index j = first; j < i && !seen; ++j) {
+        const Triangle& earlier = triangles[cells.node_triangles[j]];
+        seen = earlier[0] == node || earlier[1] == node || earlier[2] == node;
+      }
+      if (!seen) ++count;
+    }
+  }
+  return count;
+}
+
+// Length of row k: k and its distinct neighbours (at most two per triangle), none for a node in no
+// triangle. Distinct nodes are collected on the stack up to kLocalNeighbours.
+constexpr Index kLocalNeighbours = 48;
+
+Index row_length(const SmoothingCells& cells, const std::vector<Triangle>& triangles,
+                 std::size_t k) {
+  const Index first = cells.triangle_offset[k];
+  const Index last = cells.triangle_offset[k + 1];
+  if (first == last) return 0;
+  if (2 * (last - first) > kLocalNeighbours) {
+    return 1 + count_neighbours_in_place(cells, triangles, k);
+  }
+  std::array<Index, kLocalNeighbours> seen;
+  Index n_seen = 0;
+  for (Index i = first; i < last; ++i) {
+    for (const Index node : triangles[cells.node_triangles[i]]) {
+      if (node == Index(k)) continue;
+      Index j = 0;
+      while (j < n_seen && seen[j] != node) ++j;
+      if (j == n_seen) seen[n_seen++] = node;
+    }
+  }
+  return 1 + n_seen;
+}
+
+// Row k: b_kl A_k = sum over the triangles e around k of (A_e / 3) grad N_l^e, then A_k and b_kl.
+void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& points,
+              std::size_t k, SmoothingCells& cells) {
+  const Index row_begin = cells.offset[k];
+  Index row_end = row_begin;
+  if (cells.offset[k + 1] > row_begin) {  // a node in no triangle has an empty row
+    cells.column[row_end] = Index(k);
+    cells.gradient[row_end].setZero();
+    ++row_end;
+  }
+  double area = 0.0;
+  for (Index i = cells.triangle_offset[k]; i < cells.triangle_offset[k + 1]; ++i) {
+    const Triangle& t = triangles[cells.node_triangles[i]];
+    const TriangleTerms terms = triangle_terms(t, points);
+    area += terms.area / 3.0;  // papers/004 "Strain smoothing technique": A^(k) = (1/3) sum A_e^j
+    for (int corner = 0; corner < 3; ++corner) {
+      Index entry = row_begin;
+      while (entry < row_end && cells.column[entry] != t[corner]) ++entry;
+      if (entry == row_end) {
+        cells.column[entry] = t[corner];
+        cells.gradient[entry].setZero();
+        ++row_end;
+      }
+      cells.gradient[entry] += terms.weighted_gradient[corner];
+    }
+  }
+  assert(row_end == cells.offset[k + 1]);
+  assert((row_end == row_begin || area > 0.0) && "a smoothing-cell area is not positive");
+  cells.area[k] = area;
+  if (area != 0.0) {  // signed areas: an inverted triangle still counts consistently
+    // papers/004 "Strain smoothing technique": b_lh(x_k) = (1/A^(k)) sum_j (1/3) A_e^j N_l,h^j
+    for (Index entry = row_begin; entry < row_end; ++entry) cells.gradient[entry] /= area;
+  }
+}
+
+}  // namespace
+
+void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
+                           SmoothingCells& cells) {
+  const std::size_t n_nodes = points.size();
+  const std::vector<Triangle>& triangles = mesh.triangles;
+  build_adjacency(triangles, n_nodes, cells);
+
+  // Counting pass: row k holds k and its distinct neighbours (none for a node in no triangle).
+  cells.offset.resize(n_nodes + 1);
+  cells.offset[0] = 0;
+  const std::ptrdiff_t n = std::ptrdiff_t(n_nodes);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    cells.offset[k + 1] = row_length(cells, triangles, std::size_t(k));
+  }
+  for (std::size_t k = 1; k <= n_nodes; ++k) cells.offset[k] += cells.offset[k - 1];
+
+  // Fill pass: each row written by one thread only.
+  const std::size_t n_entries = std::size_t(cells.offset[n_nodes]);
+  cells.area.resize(n_nodes);
+  cells.column.resize(n_entries);
+  cells.gradient.resize(n_entries);
+  cells.transpose.resize(n_entries);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < n; ++k) fill_row(triangles, points, std::size_t(k), cells);
+
+    // Transpose: the row of the smaller node of each pair {k, l} finds (l, k) in row l (rows are
+    // short, about seven entries) and sets both slots; every slot has exactly one writer.
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    for (Index entry = cells.offset[k]; entry < cells.offset[k + 1]; ++entry) {
+      const Index l = cells.column[entry];
+      if (l < Index(k)) continue;  // set from row l
+      Index mirror = cells.offset[l];
+      while (cells.column[mirror] != Index(k)) ++mirror;  // (k, l) shares a triangle: present
+      assert(mirror < cells.offset[l + 1]);
+      cells.transpose[entry] = mirror;
+      cells.transpose[mirror] = entry;
+    }
+  }
+}
+
+void smoothed_velocity_gradients(const SmoothingCells& cells, const std::vector<Vec2>& velocity,
+                                 std::vector<Mat2>& gradient) {
+  const std::ptrdiff_t n = std::ptrdiff_t(cells.offset.size()) - 1;
+  gradient.resize(std::size_t(n));
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    Mat2 l_k = Mat2::Zero();
+    for (Index entry = cells.offset[k]; entry < cells.offset[k + 1]; ++entry) {
+      // L_k(i, j) = sum_l v_l,i b_kl,j (papers/004 smoothed B applied to the nodal velocities)
+      l_k.noalias() += velocity[cells.column[entry]] * cells.gradient[entry].transpose();
+    }
+    gradient[k] = l_k;
+  }
+}
+
+void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stress,
+                     std::vector<Vec2>& force) {
+  const std::ptrdiff_t n = std::ptrdiff_t(cells.offset.size()) - 1;
+  force.resize(std::size_t(n));
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t l = 0; l < n; ++l) {
+    Vec2 f = Vec2::Zero();
+    // Row l lists every k whose cell sees node l; b_kl is entry (k, l), read through transpose.
+    for (Index entry = cells.offset[l]; entry < cells.offset[l + 1]; ++entry) {
+      const Index k = cells.column[entry];
+      const Vec2& b_kl = cells.gradient[cells.transpose[entry]];
+      // papers/004 "Strain smoothing technique": F_int = sum_k B_L^(k)T sigma_k A^(k)
+      f.noalias() += cells.area[k] * (stress[k].topLeftCorner<2, 2>() * b_kl);
+    }
+    force[l] = f;
+  }
+}
+
+}  // namespace duet::spfem
