@@ -69,6 +69,9 @@ void initialise_material_points(const Scene& scene, Particles& particles) {
   initialise_internal_variables(build_models(scene), particles);
   if (scene.initial_stress.kind == InitialStressKind::geostatic) {
     apply_geostatic_stress(scene, scene.initial_stress.K0, particles);
+  } else if (scene.initial_stress.kind == InitialStressKind::isotropic) {
+    // sigma = -pressure I (compression negative).
+    for (Mat3& s : particles.stress) s = -scene.initial_stress.pressure * Mat3::Identity();
   }
 }
 

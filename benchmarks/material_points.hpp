@@ -23,7 +23,8 @@ void initialise_internal_variables(const std::vector<std::unique_ptr<constitutiv
 /// of the particle's lattice column in its body, sigma_xx = sigma_zz = K0 sigma_yy.
 void apply_geostatic_stress(const Scene& scene, double K0, Particles& particles);
 
-/// build_models + initialise_internal_variables + the scene's initial stress.
+/// build_models + initialise_internal_variables + the scene's initial stress (geostatic, or
+/// isotropic: sigma = -pressure I).
 void initialise_material_points(const Scene& scene, Particles& particles);
 
 }  // namespace duet
