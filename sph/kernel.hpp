@@ -3,6 +3,7 @@
 // the cubic spline (Peng 2015 eq 2) and the Wendland C2 kernel (simhypo-sand paper, eq 23).
 // value() and gradient() are inline: the pair loops call them for every neighbour pair.
 
+#include <algorithm>
 #include <string>
 
 #include "common/scene.hpp"
@@ -52,6 +53,41 @@ class Kernel {
     if (q >= 2.0) return 0.0;
     const double a = 1.0 - 0.5 * q;
     return -5.0 * alpha_ * inv_h_ * q * a * a * a;
+  }
+
+  /// (dW/dr) / r, so that grad_i W_ij = gradient_factor(r) r_ij; zero at r = 0 and beyond 2h.
+  /// The pair loop's form: q / r = 1 / h removes the division inside the support's core.
+  double gradient_factor(double r) const {
+    if (r <= 0.0) return 0.0;
+    const double q = r * inv_h_;
+    if (kind_ == KernelKind::cubic_spline) {
+      // d/dr of Peng 2015 eq 2, divided by r
+      if (q < 1.0) return alpha_ * inv_h_ * inv_h_ * (-3.0 + 2.25 * q);
+      if (q < 2.0) return -alpha_ * inv_h_ * 0.75 * (2.0 - q) * (2.0 - q) / r;
+      return 0.0;
+    }
+    // d/dr of simhypo-sand eq 23, divided by r: -5 (1 - q/2)^3 alpha_d / h^2
+    if (q >= 2.0) return 0.0;
+    const double a = 1.0 - 0.5 * q;
+    return -5.0 * alpha_ * inv_h_ * inv_h_ * a * a * a;
+  }
+
+  /// The same as gradient_factor(r), branch free, for the pair loop: r >= 0 and inv_r = 1 / r
+  /// (any finite value at r = 0, where the gradient f r_ij vanishes with r_ij). Both pieces of
+  /// the cubic spline are evaluated and one is selected, so a pair costs the same wherever it
+  /// lies in the support (and beyond it, where the factor is zero).
+  double gradient_factor(double r, double inv_r) const {
+    const double q = r * inv_h_;
+    if (kind_ == KernelKind::cubic_spline) {
+      // d/dr of Peng 2015 eq 2, divided by r
+      const double inner = alpha_ * inv_h_ * inv_h_ * (-3.0 + 2.25 * q);
+      const double t = std::max(2.0 - q, 0.0);
+      const double outer = -0.75 * alpha_ * inv_h_ * t * t * inv_r;
+      return q < 1.0 ? inner : outer;
+    }
+    // d/dr of simhypo-sand eq 23, divided by r
+    const double a = std::max(1.0 - 0.5 * q, 0.0);
+    return -5.0 * alpha_ * inv_h_ * inv_h_ * a * a * a;
   }
 
   /// grad_i W_ij for r_ij = x_i - x_j with |r_ij| = r (zero at r = 0).

@@ -116,6 +116,7 @@ class SphMethod final : public Solver {
     j["dummy_particles"] = static_cast<long>(c.dummy_particles);
     j["ghost_particles_max"] = static_cast<long>(c.ghost_particles_max);
     j["neighbours_max"] = static_cast<long>(c.neighbours_max);
+    j["neighbour_builds"] = c.neighbour_builds;
     j["penetrations_max"] = c.penetrations_max;
     j["penetrations_total"] = c.penetrations_total;
     j["penetrations_last_step"] = c.penetrations_last_step;

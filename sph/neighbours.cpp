@@ -68,34 +68,43 @@ void CellList::build(std::span<const Vec2> positions, double cell_size) {
 }
 
 void NeighbourLists::build(const CellList& cells, std::span<const Vec2> positions,
-                           std::size_t n_query, double radius) {
+                           std::size_t n_query, double radius, std::size_t late_from) {
   if (cells.cell_size() < radius) {
     throw std::invalid_argument("NeighbourLists: cell size smaller than the search radius");
   }
   const double radius2 = radius * radius;
   count_.resize(n_query);
+  early_.resize(n_query);
   for (;;) {
     index_.resize(n_query * stride_);
     std::size_t longest = 0;
     const std::size_t stride = stride_;
-#pragma omp parallel for schedule(static) reduction(max : longest)
+#pragma omp parallel for schedule(static) reduction(max : longest) if (n_query >= 2048)
     for (std::size_t i = 0; i < n_query; ++i) {
       const Vec2 xi = positions[i];
       const int cx = cells.cell_x(xi);
       const int cy = cells.cell_y(xi);
+      const int y0 = std::max(cy - 1, 0), y1 = std::min(cy + 1, cells.n_cells_y() - 1);
+      const int x0 = std::max(cx - 1, 0), x1 = std::min(cx + 1, cells.n_cells_x() - 1);
       std::uint32_t* row = index_.data() + i * stride;
       std::size_t n = 0;
-      for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, cells.n_cells_y() - 1); ++y) {
-        for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, cells.n_cells_x() - 1); ++x) {
-          for (const std::uint32_t j : cells.in_cell(x, y)) {
-            if (j == i) continue;
-            if ((positions[j] - xi).squaredNorm() >= radius2) continue;
-            if (n < stride) row[n] = j;
-            ++n;
+      std::size_t n_early = 0;
+      // Two sweeps over the 3 x 3 cells: indices below late_from first, then the rest.
+      for (int part = 0; part < 2; ++part) {
+        for (int y = y0; y <= y1; ++y) {
+          for (int x = x0; x <= x1; ++x) {
+            for (const std::uint32_t j : cells.in_cell(x, y)) {
+              if (j == i || (j >= late_from) != (part == 1)) continue;
+              if ((positions[j] - xi).squaredNorm() >= radius2) continue;
+              if (n < stride) row[n] = j;
+              ++n;
+            }
           }
         }
+        if (part == 0) n_early = n;
       }
       count_[i] = static_cast<std::uint32_t>(std::min(n, stride));
+      early_[i] = static_cast<std::uint32_t>(std::min(n_early, stride));
       longest = std::max(longest, n);
     }
     if (longest <= stride_) return;

@@ -46,17 +46,27 @@ class CellList {
 };
 
 /// Neighbour lists of the first n_query particles among all positions, as fixed-stride rows.
-/// A particle is not its own neighbour; only pairs closer than the radius are kept.
+/// A particle is not its own neighbour; only pairs closer than the radius are kept. Each row is
+/// split in two: first the neighbours with index below `late_from`, then the others (the SPH
+/// step puts dummy particles last, so it can finish the soil and ghost pairs before them).
 class NeighbourLists {
  public:
   /// Finds, for each i < n_query, every j != i with |x_i - x_j| < radius, using `cells` built
-  /// on the same `positions` with cell size >= radius. Rows are in cell order of j.
+  /// on the same `positions` with cell size >= radius. Within each part of a row, j is in cell
+  /// order.
   void build(const CellList& cells, std::span<const Vec2> positions, std::size_t n_query,
-             double radius);
+             double radius, std::size_t late_from = static_cast<std::size_t>(-1));
 
   std::size_t size() const { return count_.size(); }
   std::span<const std::uint32_t> of(std::size_t i) const {
     return {index_.data() + i * stride_, count_[i]};
+  }
+  /// The part of row i with j < late_from, and the part with j >= late_from.
+  std::span<const std::uint32_t> early(std::size_t i) const {
+    return {index_.data() + i * stride_, early_[i]};
+  }
+  std::span<const std::uint32_t> late(std::size_t i) const {
+    return {index_.data() + i * stride_ + early_[i], count_[i] - early_[i]};
   }
   /// Largest row length of the last build.
   std::size_t max_count() const;
@@ -67,6 +77,7 @@ class NeighbourLists {
   std::size_t stride_ = 32;
   std::vector<std::uint32_t> index_;
   std::vector<std::uint32_t> count_;
+  std::vector<std::uint32_t> early_;
 };
 
 }  // namespace duet::sph

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 #include <stdexcept>
 
@@ -11,8 +12,12 @@
 #include "common/solver.hpp"
 #include "common/suggest.hpp"
 #include "constitutive/objective.hpp"
+#include "sph/pair_terms.hpp"
 
 namespace duet::sph {
+
+using detail::artificial_stress_term;
+using detail::kParallelMin;
 
 namespace {
 
@@ -22,26 +27,12 @@ namespace {
 // interval; 40 is the customary value.
 constexpr long kVerletEulerInterval = 40;
 
-Mat2 in_plane(const Mat3& s) {
-  return s.topLeftCorner<2, 2>();
-}
-
-/// Peng 2015 eq 29: R^{mn} = -b sigma^{mn} / rho^2 where sigma^{mn} > 0, else 0.
-Mat2 artificial_stress_term(const Mat2& sigma, double rho, double b) {
-  Mat2 r = Mat2::Zero();
-  for (int m = 0; m < 2; ++m) {
-    for (int n = 0; n < 2; ++n) {
-      if (sigma(m, n) > 0.0) r(m, n) = -b * sigma(m, n) / (rho * rho);
-    }
-  }
-  return r;
-}
-
-/// Mirror image R s R of an in-plane tensor across a line with unit normal n, R = I - 2 n n^T.
-Mat2 mirror(const Mat2& s, const Vec2& n) {
-  const Mat2 r = Mat2::Identity() - 2.0 * n * n.transpose();
-  return r * s * r;
-}
+// Verlet-list skin as a fraction of the kernel support 2h: neighbour rows hold every pair closer
+// than 2h + skin and stay valid until some particle (soil, ghost, dummy) or wall point has moved
+// skin / 2 since the last build (then no pair can have closed from beyond 2h + skin to within
+// 2h). Not tuned: collapse-bui at dp = 2 mm, CFL 0.3 rebuilds every 52 steps on average (1092
+// builds in 56,569 steps), and the skipped skin pairs cost little (README, step 3).
+constexpr double kSkinFraction = 0.1;
 
 Mat3 embed(const Mat2& a) {
   Mat3 b = Mat3::Zero();
@@ -61,6 +52,7 @@ SphSolver::SphSolver(SphSetup setup)
   // Peng 2015 eq 28: f_ij = W_ij / W(dp), n = W(0) / W(dp)
   w_dp_ = kernel_.value(setup_.spacing);
   exponent_n_ = kernel_.value(0.0) / w_dp_;
+  skin_ = kSkinFraction * kernel_.support_radius();
 }
 
 void SphSolver::initialise(Particles& particles) {
@@ -91,44 +83,50 @@ void SphSolver::initialise(Particles& particles) {
 
   // Walls: orient each segment towards the soil, then lay the dummy particles behind it.
   geometry_.clear();
-  boundary_position_.clear();
-  boundary_velocity_.clear();
-  boundary_wall_.clear();
+  dummy_position_.clear();
+  dummy_velocity_.clear();
+  dummy_wall_.clear();
   for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
     const WallSpec& wall = setup_.walls[w];
     geometry_.push_back(orient_wall(wall, particles.position, kernel_.support_radius()));
     if (wall.condition != WallCondition::no_slip) continue;
     for (const Vec2& x : dummy_particles(geometry_.back(), dp, setup_.options.dummy_layers)) {
-      boundary_position_.push_back(x);
-      boundary_velocity_.push_back(Vec2::Zero());
-      boundary_wall_.push_back(static_cast<std::int32_t>(w));
+      dummy_position_.push_back(x);
+      dummy_velocity_.push_back(Vec2::Zero());
+      dummy_wall_.push_back(static_cast<std::int32_t>(w));
     }
   }
-  n_dummy_ = boundary_position_.size();
-  dummy_reference_ = boundary_position_;
+  wall_reference_.clear();
+  for (const WallGeometry& g : geometry_) wall_reference_.push_back(g.points);
+  n_dummy_ = dummy_position_.size();
   counters_ = SphCounters{};
   counters_.dummy_particles = n_dummy_;
 
-  // Reserve for the worst case of ghosts (every soil particle mirrored by every free-slip wall
-  // segment) so that a step never reallocates.
+  // Reserve for the worst case of ghost candidates (every soil particle mirrored by every
+  // free-slip wall segment) so that a step never reallocates.
   std::size_t free_slip_segments = 0;
   for (const auto& wall : setup_.walls) {
     if (wall.condition == WallCondition::free_slip) free_slip_segments += wall.polyline.size() - 1;
   }
-  const std::size_t capacity = n_dummy_ + n * free_slip_segments;
-  boundary_position_.reserve(capacity);
-  boundary_velocity_.reserve(capacity);
-  boundary_wall_.reserve(capacity);
-  ghost_source_.reserve(n * free_slip_segments);
-  ghost_normal_.reserve(n * free_slip_segments);
-  all_position_.reserve(n + capacity);
+  const std::size_t max_ghosts = n * free_slip_segments;
+  const std::size_t max_working = n + max_ghosts + n_dummy_;
+  ghost_source_.reserve(max_ghosts);
+  ghost_wall_.reserve(max_ghosts);
+  ghost_segment_.reserve(max_ghosts);
+  boundary_position_.reserve(n_dummy_ + max_ghosts);
+  work_.reserve(max_working);
+  work_r_.reserve(max_working);
+  work_wall_.reserve(max_working);
+  work_reference_.reserve(max_working);
+  all_position_.reserve(max_working);
+  order_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(i);
+  rebuild_ = true;
 
   acceleration_.assign(n, Vec2::Zero());
   external_force_.assign(n, Vec2::Zero());
   velocity_gradient_.assign(n, Mat2::Zero());
   density_rate_.assign(n, 0.0);
-  stress_over_rho2_.assign(n, Mat2::Zero());
-  artificial_r_.assign(n, Mat2::Zero());
   wall_force_.assign(setup_.walls.size(), Vec2::Zero());
   wall_force_scratch_.assign(static_cast<std::size_t>(n_threads) * setup_.walls.size(),
                              Vec2::Zero());
@@ -146,178 +144,128 @@ void SphSolver::initialise(Particles& particles) {
   timers_.reset();
 }
 
-void SphSolver::update_boundary(const Particles& particles, double time, double dt) {
-  // Moving walls follow their prescribed velocity over the last step (dummies move with them),
-  // then take the velocity of the coming step.
-  for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
-    WallGeometry& g = geometry_[w];
-    const WallVelocity& velocity = setup_.walls[w].velocity;
-    if (!velocity) continue;
-    for (std::size_t k = 0; k < g.points.size(); ++k) {
-      g.points[k] += dt * g.point_velocity[k];
-      // Walls stay put while the soil settles under gravity loading.
-      g.point_velocity[k] = settling_ ? Vec2::Zero() : velocity(time, g.points[k]);
-    }
-    update_normals(g);
-  }
-  for (std::size_t d = 0; d < n_dummy_; ++d) {
-    const WallVelocity& velocity =
-        setup_.walls[static_cast<std::size_t>(boundary_wall_[d])].velocity;
-    if (!velocity) continue;
-    boundary_position_[d] += dt * boundary_velocity_[d];
-    boundary_velocity_[d] = settling_ ? Vec2::Zero() : velocity(time, boundary_position_[d]);
-  }
-  // Ghosts are rebuilt from the current soil state (Peng 2015 section 4.2, reach kh with k = 2).
-  boundary_position_.resize(n_dummy_);
-  boundary_velocity_.resize(n_dummy_);
-  boundary_wall_.resize(n_dummy_);
-  ghost_source_.clear();
-  ghost_normal_.clear();
-  for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
-    if (setup_.walls[w].condition != WallCondition::free_slip) continue;
-    append_ghost_particles(geometry_[w], static_cast<std::int32_t>(w), particles.position,
-                           particles.velocity, kernel_.support_radius(), boundary_position_,
-                           boundary_velocity_, boundary_wall_, ghost_source_, ghost_normal_);
-  }
-  counters_.ghost_particles_max = std::max(counters_.ghost_particles_max, ghost_source_.size());
-}
-
-void SphSolver::find_neighbours(const Particles& particles) {
-  const std::size_t n = particles.size();
-  all_position_.resize(n + boundary_position_.size());
-  std::copy(particles.position.begin(), particles.position.end(), all_position_.begin());
-  std::copy(boundary_position_.begin(), boundary_position_.end(), all_position_.begin() + n);
-  try {
-    cells_.build(all_position_, kernel_.support_radius());
-  } catch (const std::domain_error& e) {
-    throw NumericalFailure(std::string("neighbour search: ") + e.what());
-  }
-  neighbours_.build(cells_, all_position_, n, kernel_.support_radius());
-  counters_.neighbours_max = std::max(counters_.neighbours_max, neighbours_.max_count());
-}
-
 void SphSolver::pair_loop(const Particles& particles) {
   const duet::SphOptions& o = setup_.options;
   const std::size_t n = particles.size();
   const std::size_t n_walls = setup_.walls.size();
   const double h = h_;
-  const double cs = o.sound_speed;
+  const double support2 = kernel_.support_radius() * kernel_.support_radius();
+  const double alpha_cs = o.alpha * o.sound_speed;
+  const double beta = o.beta;
+  const double eps_h2 = 0.01 * h * h;
+  const double tiny = std::numeric_limits<double>::min();
   const double b = o.artificial_stress;
   const double dummy_volume = setup_.spacing * setup_.spacing;
   const bool sigma_max = o.wall_stress == SphWallStress::sigma_max;
-
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const double rho = particles.density[i];
-    const Mat2 s = in_plane(particles.stress[i]);
-    stress_over_rho2_[i] = s / (rho * rho);
-    artificial_r_[i] = b > 0.0 ? artificial_stress_term(s, rho, b) : Mat2::Zero();
-  }
+  const Vec2 g = setup_.gravity;
+  const PairData* work = work_.data();
+  const SymR* work_r = work_r_.data();
+  const std::int32_t* work_wall = work_wall_.data();
   std::fill(wall_force_scratch_.begin(), wall_force_scratch_.end(), Vec2::Zero());
+  double a_max2 = 0.0;
 
-  // Gather per soil particle i, visited in cell order: each thread writes only row i and its
-  // own wall-force slots, so the loop is free of races without atomics.
-  const auto sorted = cells_.sorted();
-#pragma omp parallel
+  // Gather per soil particle, in working (cell) order: each thread writes only its own particles'
+  // results and its own wall-force slots, so the loop is free of races without atomics.
+#pragma omp parallel if (n >= kParallelMin)
   {
     Vec2* wall_force = wall_force_scratch_.data() + omp_get_thread_num() * n_walls;
-#pragma omp for schedule(dynamic, 64)
-    for (std::size_t k = 0; k < sorted.size(); ++k) {
-      const std::size_t i = sorted[k];
-      if (i >= n) continue;
-      const auto row = neighbours_.of(i);
-      const Vec2 xi = particles.position[i];
-      const Vec2 vi = particles.velocity[i];
-      const double rho_i = particles.density[i];
-      const double m_i = particles.mass[i];
-      const Mat2 si = in_plane(particles.stress[i]);
-
-      // Peng 2015 eq 31: dummy-particle stress with diagonal = min over the soil neighbours
-      // (and i itself), off-diagonal = that of particle i. Bui 2008: the stress of i.
-      Mat2 s_dummy = si;
-      bool sees_dummy = false;
-      for (const std::uint32_t j : row) sees_dummy = sees_dummy || (j >= n && j < n + n_dummy_);
-      if (sigma_max && sees_dummy) {
-        for (const std::uint32_t j : row) {
-          if (j >= n) continue;
-          const Mat3& sj = particles.stress[j];
-          s_dummy(0, 0) = std::min(s_dummy(0, 0), sj(0, 0));
-          s_dummy(1, 1) = std::min(s_dummy(1, 1), sj(1, 1));
-        }
-      }
-      const Mat2 dummy_over_rho2 = s_dummy / (rho_i * rho_i);
-      const Mat2 dummy_r = b > 0.0 ? artificial_stress_term(s_dummy, rho_i, b) : Mat2::Zero();
-
-      Vec2 a = Vec2::Zero();
-      Mat2 grad_v = Mat2::Zero();
+#pragma omp for schedule(dynamic, 256) reduction(max : a_max2) nowait
+    for (std::size_t k = 0; k < n; ++k) {
+      const PairData& pi = work[k];
+      const std::size_t i = order_[k];
+      const double rho_i = pi.rho;
+      const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
+      double ax = 0.0, ay = 0.0;
+      double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;  // velocity gradient
       double rho_rate = 0.0;
-      for (const std::uint32_t j : row) {
-        Vec2 xj, vj;
-        Mat2 term_j, r_j;
-        double m_j, rho_j;
-        int wall = -1;
-        if (j < n) {
-          xj = particles.position[j];
-          vj = particles.velocity[j];
-          m_j = particles.mass[j];
-          rho_j = particles.density[j];
-          term_j = stress_over_rho2_[j];
-          r_j = artificial_r_[j];
-        } else {
-          const std::size_t bj = j - n;
-          xj = boundary_position_[bj];
-          vj = boundary_velocity_[bj];
-          wall = boundary_wall_[bj];
-          if (bj < n_dummy_) {
-            // Dummy particle: density and volume of the interacting soil particle's lattice.
-            rho_j = rho_i;
-            m_j = rho_i * dummy_volume;
-            term_j = dummy_over_rho2;
-            r_j = dummy_r;
-          } else {
-            // Ghost: the mirrored state of its soil particle (Peng 2015 section 4.2).
-            const std::size_t g = bj - n_dummy_;
-            const auto src = static_cast<std::size_t>(ghost_source_[g]);
-            rho_j = particles.density[src];
-            m_j = particles.mass[src];
-            const Mat2 sj = mirror(in_plane(particles.stress[src]), ghost_normal_[g]);
-            term_j = sj / (rho_j * rho_j);
-            r_j = b > 0.0 ? artificial_stress_term(sj, rho_j, b) : Mat2::Zero();
-          }
-        }
-        const Vec2 r_ij = xi - xj;
-        const double r = r_ij.norm();
-        const Vec2 grad = kernel_.gradient(r_ij, r);
-        const Vec2 v_ij = vi - vj;
 
+      // One neighbour j: m_j, rho_j, V_j = m_j / rho_j, its stress / rho_j^2 (t) and artificial
+      // stress R_j. Branch free (a neighbour in the skin, beyond 2h, has a zero kernel gradient
+      // and so adds exactly zero): mispredicted branches cost more than the arithmetic.
+      const auto interact = [&](const PairData& pj, double m_j, double rho_j, double volume_j,
+                                double txx, double tyy, double txy, const SymR& r_j, int wall) {
+        const double dx = pi.x - pj.x, dy = pi.y - pj.y;
+        const double r2 = dx * dx + dy * dy;
+        if (r2 >= support2) return;  // in the skin: not (yet) a neighbour
+        const double r = std::sqrt(r2);
+        const double f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
+        const double gx = f * dx, gy = f * dy;  // grad_i W_ij
+        const double vx = pi.vx - pj.vx, vy = pi.vy - pj.vy;
         // Peng 2015 eqs 26-27: artificial viscosity on approaching pairs
+        const double vr = vx * dx + vy * dy;
         double pi_ij = 0.0;
-        const double vr = v_ij.dot(r_ij);
         if (vr < 0.0) {
-          const double phi = h * vr / (r * r + 0.01 * h * h);
-          pi_ij = (-o.alpha * cs * phi + o.beta * phi * phi) / (0.5 * (rho_i + rho_j));
+          const double phi = h * vr / (r2 + eps_h2);
+          pi_ij = (-alpha_cs * phi + beta * phi * phi) * 2.0 / (rho_i + rho_j);
         }
         // Peng 2015 eq 30: sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij
-        Mat2 term = stress_over_rho2_[i] + term_j;
-        term.diagonal().array() -= pi_ij;
+        double cxx = pi.sxx + txx - pi_ij, cyy = pi.syy + tyy - pi_ij, cxy = pi.sxy + txy;
         if (b > 0.0) {
           // Peng 2015 eq 28: S_ij = f_ij^n (R_i + R_j), f_ij = W_ij / W(dp)
-          const double f = kernel_.value(r) / w_dp_;
-          term += std::pow(f, exponent_n_) * (artificial_r_[i] + r_j);
+          const double fn = std::pow(kernel_.value(r) / w_dp_, exponent_n_);
+          cxx += fn * (r_i.xx + r_j.xx);
+          cyy += fn * (r_i.yy + r_j.yy);
+          cxy += fn * (r_i.xy + r_j.xy);
         }
-        const Vec2 a_ij = m_j * (term * grad);
-        a += a_ij;
-        if (wall >= 0) wall_force[wall] -= m_i * a_ij;  // reaction: force of i on the wall
-
-        const double volume_j = m_j / rho_j;
+        const double ax_ij = m_j * (cxx * gx + cxy * gy);
+        const double ay_ij = m_j * (cxy * gx + cyy * gy);
+        ax += ax_ij;
+        ay += ay_ij;
+        if (wall >= 0) wall_force[wall] -= pi.m * Vec2(ax_ij, ay_ij);  // reaction on the wall
         // Peng 2015 eq 21: grad v_i = sum_j (v_j - v_i) (x) grad_i W_ij m_j / rho_j
-        grad_v -= v_ij * grad.transpose() * volume_j;
+        lxx -= vx * gx * volume_j;
+        lxy -= vx * gy * volume_j;
+        lyx -= vy * gx * volume_j;
+        lyy -= vy * gy * volume_j;
         // simhypo-sand eq 24: d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij
-        rho_rate += m_j * v_ij.dot(grad);
+        rho_rate += m_j * (vx * gx + vy * gy);
+      };
+
+      // Soil and ghost neighbours; on the way, Peng 2015 eq 31's smallest normal stresses
+      // among i and its soil neighbours, for the dummies below.
+      const auto late = neighbours_.late(k);
+      double min_xx = pi.sxx * rho_i * rho_i, min_yy = pi.syy * rho_i * rho_i;
+      const bool track = sigma_max && !late.empty();
+      for (const std::uint32_t j : neighbours_.early(k)) {
+        const PairData& pj = work[j];
+        if (track && j < n) {
+          const double dx = pi.x - pj.x, dy = pi.y - pj.y;
+          const double rho2 = pj.rho * pj.rho;
+          const bool near = dx * dx + dy * dy < support2;
+          min_xx = std::min(min_xx, near ? pj.sxx * rho2 : min_xx);
+          min_yy = std::min(min_yy, near ? pj.syy * rho2 : min_yy);
+        }
+        interact(pj, pj.m, pj.rho, pj.vol, pj.sxx, pj.syy, pj.sxy, b > 0.0 ? work_r[j] : r_i,
+                 j < n ? -1 : work_wall[j]);
       }
-      acceleration_[i] = a + setup_.gravity + external_force_[i] / m_i;  // eq 30: + g
-      velocity_gradient_[i] = grad_v;
+      if (!late.empty()) {
+        // Dummy particles: density of i, volume dp^2 of its lattice, and stress sigma_max
+        // (Peng 2015 eq 31: diagonal = the minimum above, off-diagonal = that of i) or, with
+        // Bui 2008, the stress of i.
+        const double inv_rho2 = 1.0 / (rho_i * rho_i);
+        const double dxx = sigma_max ? min_xx * inv_rho2 : pi.sxx;
+        const double dyy = sigma_max ? min_yy * inv_rho2 : pi.syy;
+        SymR r_dummy{0.0, 0.0, 0.0};
+        if (b > 0.0) {
+          Mat2 s_dummy;
+          s_dummy << dxx * rho_i * rho_i, pi.sxy * rho_i * rho_i, pi.sxy * rho_i * rho_i,
+              dyy * rho_i * rho_i;
+          const Mat2 r = artificial_stress_term(s_dummy, rho_i, b);
+          r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
+        }
+        const double m_dummy = rho_i * dummy_volume;
+        for (const std::uint32_t j : late) {
+          interact(work[j], m_dummy, rho_i, dummy_volume, dxx, dyy, pi.sxy, r_dummy, work_wall[j]);
+        }
+      }
+      const Vec2 a = Vec2(ax, ay) + g + external_force_[i] / pi.m;  // eq 30: + g
+      acceleration_[i] = a;
+      Mat2 l;
+      l << lxx, lxy, lyx, lyy;
+      velocity_gradient_[i] = l;
       density_rate_[i] = rho_rate;
+      const double a2 = a.squaredNorm();
+      a_max2 = std::max(a_max2, std::isfinite(a2) ? a2 : std::numeric_limits<double>::infinity());
     }
   }
   for (std::size_t w = 0; w < n_walls; ++w) {
@@ -327,13 +275,20 @@ void SphSolver::pair_loop(const Particles& particles) {
     }
     wall_force_[w] = f;
   }
+  if (!std::isfinite(a_max2)) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!acceleration_[i].allFinite()) {
+        throw NumericalFailure("non-finite acceleration", static_cast<long>(i));
+      }
+    }
+  }
+  acceleration_max_ = std::sqrt(a_max2);
 }
 
 double SphSolver::time_step() const {
-  double a_max = 0.0;
-  for (const Vec2& a : acceleration_) a_max = std::max(a_max, a.norm());
   // Peng 2015 eq 36: dt_1 = min_i sqrt(h / |a_i|); eq 37: dt = chi min(dt_1, h / c_s)
-  const double dt_1 = a_max > 0.0 ? std::sqrt(h_ / a_max) : std::numeric_limits<double>::max();
+  const double dt_1 = acceleration_max_ > 0.0 ? std::sqrt(h_ / acceleration_max_)
+                                              : std::numeric_limits<double>::max();
   return setup_.options.cfl * std::min(dt_1, h_ / setup_.options.sound_speed);
 }
 
@@ -345,9 +300,13 @@ void SphSolver::advance(Particles& particles, double dt) {
   // the first step is a forward Euler step from n.
   const bool euler = first_step_ || counters_.steps % kVerletEulerInterval == 0;
   const double span = euler ? dt : previous_dt_ + dt;
-  long bad = -1;
+  std::size_t bad = n;  // first particle with a non-finite state
+  double v_max2 = 0.0;
+  long penetrations = 0;
+  const double depth = setup_.options.dummy_layers * setup_.spacing;
 
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) reduction(min : bad) reduction(max : v_max2) \
+    reduction(+ : penetrations) if (n >= kParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
     const auto m = static_cast<std::size_t>(particles.material[i]);
     const constitutive::Model& model = *setup_.models[m];
@@ -357,6 +316,8 @@ void SphSolver::advance(Particles& particles, double dt) {
     const Mat3 w = skew(l);  // Peng 2015 eq 23
     // Gravity loading only: velocity damping -c v (Peng 2015 section 5.3).
     const Vec2 a = acceleration_[i] - damping_ * particles.velocity[i];
+    const Vec2* v_new = &particles.velocity[i];
+    const Mat3* s_new = &particles.stress[i];
     if (verlet) {
       const Vec2 v_n = particles.velocity[i];
       const Vec2 v_base = euler ? v_n : velocity_old_[i];
@@ -381,7 +342,10 @@ void SphSolver::advance(Particles& particles, double dt) {
       if (continuity) {
         scratch_density_[i] =
             (euler ? particles.density[i] : density_old_[i]) + span * density_rate_[i];
+        particles.volume[i] = particles.mass[i] / scratch_density_[i];
       }
+      v_new = &scratch_velocity_[i];
+      s_new = &scratch_stress_[i];
     } else {
       // Leapfrog: kick, drift; stress by the incremental objective update of the library.
       particles.velocity[i] += dt * a;
@@ -391,10 +355,24 @@ void SphSolver::advance(Particles& particles, double dt) {
       constitutive::update_stress(model, d * dt, w * dt, particles.stress[i], internal);
       model.correct(particles.stress[i], internal);
       particles.strain[i] += d * dt;
-      if (continuity) particles.density[i] += dt * density_rate_[i];
+      if (continuity) {
+        particles.density[i] += dt * density_rate_[i];
+        particles.volume[i] = particles.mass[i] / particles.density[i];
+      }
     }
-    if (continuity) particles.volume[i] = particles.mass[i] / particles.density[i];
+    if (!s_new->allFinite() || !particles.position[i].allFinite() || !v_new->allFinite()) {
+      bad = std::min(bad, i);
+    }
+    v_max2 = std::max(v_max2, v_new->squaredNorm());
+    // Particles behind a wall, within its dummy layers (counted, reported in diagnostics).
+    for (const WallGeometry& g : geometry_) {
+      if (behind_wall(g, particles.position[i], depth)) {
+        ++penetrations;
+        break;
+      }
+    }
   }
+  penetrations_ = penetrations;
   if (verlet) {
     // n - 1 <- n, n <- n + 1 (swap keeps every buffer: no allocation)
     std::swap(velocity_old_, particles.velocity);
@@ -408,77 +386,45 @@ void SphSolver::advance(Particles& particles, double dt) {
       std::swap(particles.density, scratch_density_);
     }
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!particles.stress[i].allFinite() || !particles.position[i].allFinite() ||
-        !particles.velocity[i].allFinite()) {
-      bad = static_cast<long>(i);
-      break;
-    }
+  if (bad < n) {
+    throw NumericalFailure("non-finite particle state after the SPH update",
+                           static_cast<long>(bad));
   }
-  if (bad >= 0) throw NumericalFailure("non-finite particle state after the SPH update", bad);
+  if (v_max2 > setup_.options.sound_speed * setup_.options.sound_speed) {
+    // Runaway kinetic energy: a particle faster than the sound speed breaks eq 37's time step.
+    long fastest = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (particles.velocity[i].squaredNorm() == v_max2) fastest = static_cast<long>(i);
+    }
+    throw NumericalFailure("runaway kinetic energy: particle speed " +
+                               std::to_string(std::sqrt(v_max2)) + " m/s exceeds the sound speed",
+                           fastest);
+  }
   first_step_ = false;
   previous_dt_ = dt;
 }
 
-long SphSolver::count_penetrations(const Particles& particles) const {
-  const double depth = setup_.options.dummy_layers * setup_.spacing;
-  long count = 0;
-  const std::size_t n = particles.size();
-#pragma omp parallel for schedule(static) reduction(+ : count)
-  for (std::size_t i = 0; i < n; ++i) {
-    for (const WallGeometry& g : geometry_) {
-      if (behind_wall(g, particles.position[i], depth)) {
-        ++count;
-        break;
-      }
-    }
-  }
-  return count;
-}
-
 double SphSolver::step(Particles& particles, double time) {
   {
-    ScopedTimer t(timers_, Phase::other);
-    update_boundary(particles, time, counters_.steps > 0 ? previous_dt_ : 0.0);
-  }
-  {
     ScopedTimer t(timers_, Phase::neighbours);
-    find_neighbours(particles);
+    update_walls(time, counters_.steps > 0 ? previous_dt_ : 0.0);
+    // Verlet list: rebuild (and re-sort the working order) once anything has moved skin / 2.
+    const double moved2 = rebuild_ ? 0.0 : gather(particles);
+    if (rebuild_ || 4.0 * moved2 >= skin_ * skin_) rebuild_neighbours(particles);
   }
   {
     ScopedTimer t(timers_, Phase::forces);
     pair_loop(particles);
-  }
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    if (!acceleration_[i].allFinite()) {
-      throw NumericalFailure("non-finite acceleration", static_cast<long>(i));
-    }
   }
   const double dt = time_step();
   {
     ScopedTimer t(timers_, Phase::constitutive);
     advance(particles, dt);
   }
-  ScopedTimer checks(timers_, Phase::other);
-  double v_max = 0.0;
-  long fastest = -1;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    const double v = particles.velocity[i].norm();
-    if (v > v_max) {
-      v_max = v;
-      fastest = static_cast<long>(i);
-    }
-  }
-  if (v_max > setup_.options.sound_speed) {
-    // Runaway kinetic energy: a particle faster than the sound speed breaks eq 37's time step.
-    throw NumericalFailure("runaway kinetic energy: particle speed " + std::to_string(v_max) +
-                               " m/s exceeds the sound speed",
-                           fastest);
-  }
-  const long penetrations = count_penetrations(particles);
-  counters_.penetrations_last_step = penetrations;
-  counters_.penetrations_max = std::max(counters_.penetrations_max, penetrations);
-  counters_.penetrations_total += penetrations;
+  counters_.penetrations_last_step = penetrations_;
+  counters_.penetrations_max = std::max(counters_.penetrations_max, penetrations_);
+  counters_.penetrations_total += penetrations_;
+  counters_.ghost_particles_max = std::max(counters_.ghost_particles_max, n_active_ghosts_);
   counters_.dt_min = counters_.steps == 0 ? dt : std::min(counters_.dt_min, dt);
   counters_.dt_max = std::max(counters_.dt_max, dt);
   ++counters_.steps;

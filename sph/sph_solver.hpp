@@ -40,7 +40,8 @@ struct SphCounters {
   long penetrations_total = 0;  // particle-steps behind a wall
   std::size_t dummy_particles = 0;
   std::size_t ghost_particles_max = 0;
-  std::size_t neighbours_max = 0;
+  std::size_t neighbours_max = 0;  // longest neighbour row (within 2h + skin)
+  long neighbour_builds = 0;       // Verlet-list rebuilds (every step would equal steps)
   double dt_min = 0.0;
   double dt_max = 0.0;
 };
@@ -68,50 +69,82 @@ class SphSolver {
   /// Force of the soil on each wall of the setup (N/m), in the order of setup.walls.
   const std::vector<Vec2>& wall_forces() const { return wall_force_; }
   const std::vector<WallSpec>& walls() const { return setup_.walls; }
-  /// Wall time per phase: neighbours, forces (pair loop), constitutive (stress update and
-  /// time integration), other (walls, ghosts, checks).
+  /// Wall time per phase: neighbours (walls, ghosts, the working-order copy, Verlet-list
+  /// rebuilds), forces (pair loop), constitutive (stress update, time integration, checks).
   const Timers& timers() const { return timers_; }
   const SphCounters& counters() const { return counters_; }
   const Kernel& kernel() const { return kernel_; }
   const duet::SphOptions& options() const { return setup_.options; }
-  /// Current boundary (dummy, then ghost) particle positions, for output and tests.
+  /// Current boundary particle positions, for output and tests: the dummies, then the ghost
+  /// candidates of the current neighbour list (a candidate acts only while its soil particle
+  /// lies within 2h in front of the wall).
   const std::vector<Vec2>& boundary_positions() const { return boundary_position_; }
   /// Acceleration of each soil particle in the last step (m/s^2).
   const std::vector<Vec2>& accelerations() const { return acceleration_; }
 
  private:
-  void update_boundary(const Particles& particles, double time, double dt);
-  void find_neighbours(const Particles& particles);
+  /// What the pair loop reads of particle j, in working order (soil sorted by cell, then ghost
+  /// candidates, then dummies), packed so that one neighbour is one or two cache lines:
+  /// position, velocity, mass, density, volume m / rho and the in-plane stress / rho^2
+  /// (symmetric).
+  struct PairData {
+    double x, y, vx, vy, m, rho, vol, sxx, syy, sxy;
+  };
+  /// Peng 2015 eq 29 artificial stress R (symmetric), in working order; only with b > 0.
+  struct SymR {
+    double xx, yy, xy;
+  };
+
+  void update_walls(double time, double dt);
+  void select_ghosts(const Particles& particles);
+  /// Copies the pair loop's inputs into work_ (working order); returns the largest squared
+  /// displacement of a working entry or wall point since the last neighbour build.
+  double gather(const Particles& particles);
+  void rebuild_neighbours(const Particles& particles);
   void pair_loop(const Particles& particles);
   double time_step() const;
   void advance(Particles& particles, double dt);
-  long count_penetrations(const Particles& particles) const;
 
   SphSetup setup_;
   Kernel kernel_;
   double h_ = 0.0;
+  double skin_ = 0.0;                    // Verlet-list skin, m
   std::vector<std::size_t> n_internal_;  // per material
   std::vector<WallGeometry> geometry_;
+  std::vector<std::vector<Vec2>> wall_reference_;  // wall points at the last neighbour build
 
-  // Boundary particles: dummies first (fixed count), then ghosts (rebuilt each step).
+  // Boundary particles: dummies (fixed count, moving with their wall), then the ghost
+  // candidates chosen at the last neighbour build (every soil particle that could come within
+  // 2h in front of a free-slip segment before the next build).
   std::size_t n_dummy_ = 0;
-  std::vector<Vec2> boundary_position_;
-  std::vector<Vec2> boundary_velocity_;
-  std::vector<std::int32_t> boundary_wall_;
-  std::vector<std::int32_t> ghost_source_;  // per ghost: soil particle mirrored
-  std::vector<Vec2> ghost_normal_;          // per ghost: wall normal
-  std::vector<Vec2> dummy_reference_;       // dummy positions at t = 0 (walls translate)
+  std::vector<Vec2> dummy_position_;
+  std::vector<Vec2> dummy_velocity_;
+  std::vector<std::int32_t> dummy_wall_;
+  std::vector<std::uint32_t> ghost_source_;   // per candidate: soil particle mirrored
+  std::vector<std::uint32_t> ghost_wall_;     // per candidate: wall
+  std::vector<std::uint32_t> ghost_segment_;  // per candidate: segment of that wall
+  std::vector<Vec2> boundary_position_;       // dummies, then ghost candidates (output only)
+  std::size_t n_active_ghosts_ = 0;
 
-  // All positions (soil, then boundary) for the neighbour search.
+  // Working order: order_[k] is the soil particle at working position k (sorted by cell at the
+  // last neighbour build); ghosts follow at n + g, dummies at n + n_ghost + d.
+  std::vector<std::uint32_t> order_;
+  std::vector<PairData> work_;
+  std::vector<SymR> work_r_;
+  std::vector<std::int32_t> work_wall_;  // per working index: wall of a boundary particle, or -1
+  std::vector<Vec2> work_reference_;     // working positions at the last neighbour build
   std::vector<Vec2> all_position_;
   CellList cells_;
   NeighbourLists neighbours_;
+  bool rebuild_ = true;
 
-  // Per soil particle results of the pair loop.
+  // Per soil particle (driver's index) results of the pair loop.
   std::vector<Vec2> acceleration_;
   std::vector<Vec2> external_force_;
   std::vector<Mat2> velocity_gradient_;
   std::vector<double> density_rate_;
+  double acceleration_max_ = 0.0;
+  long penetrations_ = 0;  // soil particles behind a wall after the last update
   // Per thread, per wall: force of the soil on the wall.
   std::vector<Vec2> wall_force_scratch_;
   std::vector<Vec2> wall_force_;
@@ -129,11 +162,6 @@ class SphSolver {
   std::vector<double> scratch_density_;
   std::vector<double> void_ratio_old_;
   std::vector<int> void_ratio_slot_;  // per material: slot of "void_ratio" or -1
-
-  // Per soil particle, refreshed before the pair loop: in-plane stress / rho^2 and the
-  // artificial stress R of Peng 2015 eq 29.
-  std::vector<Mat2> stress_over_rho2_;
-  std::vector<Mat2> artificial_r_;
 
   double damping_ = 0.0;  // 1/s, only while settling
   bool settling_ = false;

@@ -105,6 +105,23 @@ bool behind_wall(const WallGeometry& wall, const Vec2& x, double depth) {
   return false;
 }
 
+bool mirror_particle(const WallGeometry& wall, std::size_t segment, const Vec2& x, const Vec2& v,
+                     double reach, Vec2& x_ghost, Vec2& v_ghost) {
+  const Vec2 n = wall.normals[segment];
+  const Vec2 a = wall.points[segment];
+  const Vec2 t = wall.points[segment + 1] - a;
+  const double d = (x - a).dot(n);
+  const double u = (x - a).dot(t) / t.squaredNorm();
+  const Vec2 v_wall =
+      (1.0 - u) * wall.point_velocity[segment] + u * wall.point_velocity[segment + 1];
+  // Peng 2015 section 4.2: ghost mirrored across the wall, tangential velocity kept and the
+  // normal velocity (relative to the wall) reversed.
+  const Vec2 relative = v - v_wall;
+  x_ghost = x - 2.0 * d * n;
+  v_ghost = v_wall + relative - 2.0 * relative.dot(n) * n;
+  return u >= 0.0 && u <= 1.0 && d >= 0.0 && d < reach;
+}
+
 void append_ghost_particles(const WallGeometry& wall, std::int32_t wall_index,
                             std::span<const Vec2> soil_position,
                             std::span<const Vec2> soil_velocity, double reach,
@@ -112,23 +129,14 @@ void append_ghost_particles(const WallGeometry& wall, std::int32_t wall_index,
                             std::vector<std::int32_t>& wall_of, std::vector<std::int32_t>& source,
                             std::vector<Vec2>& normal) {
   for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
-    const Vec2 n = wall.normals[s];
-    const Vec2 a = wall.points[s];
-    const Vec2 t = wall.points[s + 1] - a;
     for (std::size_t i = 0; i < soil_position.size(); ++i) {
-      bool inside = false;
-      const double d = signed_distance(wall, s, soil_position[i], &inside);
-      if (!inside || d < 0.0 || d >= reach) continue;
-      const double u = (soil_position[i] - a).dot(t) / t.squaredNorm();
-      const Vec2 v_wall = (1.0 - u) * wall.point_velocity[s] + u * wall.point_velocity[s + 1];
-      // Peng 2015 section 4.2: ghost mirrored across the wall, tangential velocity kept and the
-      // normal velocity (relative to the wall) reversed.
-      const Vec2 relative = soil_velocity[i] - v_wall;
-      position.push_back(soil_position[i] - 2.0 * d * n);
-      velocity.push_back(v_wall + relative - 2.0 * relative.dot(n) * n);
+      Vec2 x, v;
+      if (!mirror_particle(wall, s, soil_position[i], soil_velocity[i], reach, x, v)) continue;
+      position.push_back(x);
+      velocity.push_back(v);
       wall_of.push_back(wall_index);
       source.push_back(static_cast<std::int32_t>(i));
-      normal.push_back(n);
+      normal.push_back(wall.normals[s]);
     }
   }
 }

@@ -59,6 +59,14 @@ std::vector<Vec2> dummy_particles(const WallGeometry& wall, double dp, int layer
 /// penetrated the wall).
 bool behind_wall(const WallGeometry& wall, const Vec2& x, double depth);
 
+/// The ghost of a soil particle at x with velocity v across segment `segment` (Peng 2015
+/// section 4.2): x_ghost is its mirror image across the segment line, v_ghost keeps the tangential
+/// velocity and reverses the normal one (relative to the wall, whose velocity is interpolated
+/// between the segment's end points). Returns whether the ghost acts: x lies in front of the
+/// segment, within `reach`, and projects onto it.
+bool mirror_particle(const WallGeometry& wall, std::size_t segment, const Vec2& x, const Vec2& v,
+                     double reach, Vec2& x_ghost, Vec2& v_ghost);
+
 /// Ghost particles of a free-slip wall, appended to the output arrays: for every soil particle
 /// within `reach` in front of a segment, its mirror image across the segment line, with the
 /// normal component of its velocity (relative to the wall, whose velocity is interpolated

@@ -44,6 +44,30 @@ TEST(Neighbours, CellListFindsExactlyThePairsWithinTheRadius) {
   }
 }
 
+TEST(Neighbours, RowsListIndicesFromLateFromAfterAllOthers) {
+  // Arrange: the SPH step puts dummy particles (here the last 1000) after soil and ghosts
+  const auto x = random_points(3000, 1.0, 0.6, 9);
+  const double radius = 0.04;
+  CellList cells;
+  NeighbourLists lists;
+  cells.build(x, radius);
+  // Act
+  lists.build(cells, x, 2000, radius, 2000);
+  // Assert: early = the brute-force neighbours below 2000, late = those from 2000 on
+  for (std::size_t i = 0; i < 2000; ++i) {
+    std::vector<std::uint32_t> early(lists.early(i).begin(), lists.early(i).end());
+    std::vector<std::uint32_t> late(lists.late(i).begin(), lists.late(i).end());
+    std::sort(early.begin(), early.end());
+    std::sort(late.begin(), late.end());
+    std::vector<std::uint32_t> expected_early, expected_late;
+    for (const auto j : brute_force(x, i, radius))
+      (j < 2000 ? expected_early : expected_late).push_back(j);
+    EXPECT_EQ(early, expected_early) << "particle " << i;
+    EXPECT_EQ(late, expected_late) << "particle " << i;
+    EXPECT_EQ(lists.of(i).size(), early.size() + late.size());
+  }
+}
+
 TEST(Neighbours, RowsGrowWhenAParticleHasMoreNeighboursThanTheInitialCapacity) {
   // Arrange: 400 points in a tiny cluster, so every one sees 399 neighbours
   const auto x = random_points(400, 0.001, 0.101, 3);

@@ -1,0 +1,194 @@
+// The SPH step's working set (sph/README.md, step 2): walls moved, ghost candidates chosen, the
+// pair loop's inputs copied in working order (soil sorted by cell, ghosts, dummies), and the
+// Verlet list rebuilt when something has moved half the skin.
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "common/solver.hpp"
+#include "sph/pair_terms.hpp"
+#include "sph/sph_solver.hpp"
+
+namespace duet::sph {
+
+using detail::artificial_stress_term;
+using detail::in_plane;
+using detail::kParallelMin;
+using detail::mirror;
+
+void SphSolver::update_walls(double time, double dt) {
+  // Moving walls follow their prescribed velocity over the last step (dummies move with them),
+  // then take the velocity of the coming step.
+  for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
+    WallGeometry& g = geometry_[w];
+    const WallVelocity& velocity = setup_.walls[w].velocity;
+    if (!velocity) continue;
+    for (std::size_t k = 0; k < g.points.size(); ++k) {
+      g.points[k] += dt * g.point_velocity[k];
+      // Walls stay put while the soil settles under gravity loading.
+      g.point_velocity[k] = settling_ ? Vec2::Zero() : velocity(time, g.points[k]);
+    }
+    update_normals(g);
+  }
+  for (std::size_t d = 0; d < n_dummy_; ++d) {
+    const WallVelocity& velocity = setup_.walls[static_cast<std::size_t>(dummy_wall_[d])].velocity;
+    if (!velocity) continue;
+    dummy_position_[d] += dt * dummy_velocity_[d];
+    dummy_velocity_[d] = settling_ ? Vec2::Zero() : velocity(time, dummy_position_[d]);
+  }
+}
+
+void SphSolver::select_ghosts(const Particles& particles) {
+  // Candidates: every soil particle that can come within reach (2h, Peng 2015 section 4.2 with
+  // k = 2) in front of a free-slip segment, and project onto it, before the next build. Neither
+  // it nor the wall moves more than skin / 2 until then, so a margin of one skin suffices.
+  const double reach = kernel_.support_radius();
+  ghost_source_.clear();
+  ghost_wall_.clear();
+  ghost_segment_.clear();
+  for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
+    if (setup_.walls[w].condition != WallCondition::free_slip) continue;
+    const WallGeometry& g = geometry_[w];
+    for (std::size_t s = 0; s + 1 < g.points.size(); ++s) {
+      const Vec2 a = g.points[s];
+      const Vec2 t = g.points[s + 1] - a;
+      const double length = t.norm();
+      for (std::size_t i = 0; i < particles.size(); ++i) {
+        const Vec2 x = particles.position[i];
+        const double d = (x - a).dot(g.normals[s]);
+        const double along = (x - a).dot(t) / length;
+        if (d < -skin_ || d >= reach + skin_ || along < -skin_ || along > length + skin_) continue;
+        ghost_source_.push_back(static_cast<std::uint32_t>(i));
+        ghost_wall_.push_back(static_cast<std::uint32_t>(w));
+        ghost_segment_.push_back(static_cast<std::uint32_t>(s));
+      }
+    }
+  }
+}
+
+double SphSolver::gather(const Particles& particles) {
+  // Copies what the pair loop reads into work_, in working order, and returns the largest
+  // squared displacement of any working entry since the last neighbour build.
+  const std::size_t n = particles.size();
+  const std::size_t n_ghost = ghost_source_.size();
+  const double b = setup_.options.artificial_stress;
+  const double reach = kernel_.support_radius();
+  const bool reference = !rebuild_;
+  double moved2 = 0.0;
+  std::size_t active = 0;
+#pragma omp parallel for schedule(static) reduction(max : moved2) if (n >= kParallelMin)
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = order_[k];
+    const Vec2 x = particles.position[i];
+    const Vec2 v = particles.velocity[i];
+    const double rho = particles.density[i];
+    const Mat3& s = particles.stress[i];
+    const double inv_rho2 = 1.0 / (rho * rho);
+    const double m = particles.mass[i];
+    work_[k] = {x.x(),
+                x.y(),
+                v.x(),
+                v.y(),
+                m,
+                rho,
+                m / rho,
+                s(0, 0) * inv_rho2,
+                s(1, 1) * inv_rho2,
+                s(0, 1) * inv_rho2};
+    if (b > 0.0) {
+      const Mat2 r = artificial_stress_term(in_plane(s), rho, b);
+      work_r_[k] = {r(0, 0), r(1, 1), r(0, 1)};
+    }
+    if (reference) moved2 = std::max(moved2, (x - work_reference_[k]).squaredNorm());
+  }
+  for (std::size_t g = 0; g < n_ghost; ++g) {  // a few hundred: serial
+    // Ghost: the mirrored state of its soil particle (Peng 2015 section 4.2); a candidate out of
+    // reach carries no mass, so it adds nothing to any sum.
+    const std::size_t src = ghost_source_[g];
+    const WallGeometry& wall = geometry_[ghost_wall_[g]];
+    const std::size_t segment = ghost_segment_[g];
+    Vec2 x, v;
+    const bool acts = mirror_particle(wall, segment, particles.position[src],
+                                      particles.velocity[src], reach, x, v);
+    active += acts ? 1 : 0;
+    const double rho = particles.density[src];
+    const Mat2 s = mirror(in_plane(particles.stress[src]), wall.normals[segment]);
+    const double inv_rho2 = 1.0 / (rho * rho);
+    const double m = acts ? particles.mass[src] : 0.0;
+    work_[n + g] = {x.x(),
+                    x.y(),
+                    v.x(),
+                    v.y(),
+                    m,
+                    rho,
+                    m / rho,
+                    s(0, 0) * inv_rho2,
+                    s(1, 1) * inv_rho2,
+                    s(0, 1) * inv_rho2};
+    if (b > 0.0) {
+      const Mat2 r = artificial_stress_term(s, rho, b);
+      work_r_[n + g] = {r(0, 0), r(1, 1), r(0, 1)};
+    }
+    boundary_position_[n_dummy_ + g] = x;
+    if (reference) moved2 = std::max(moved2, (x - work_reference_[n + g]).squaredNorm());
+  }
+  for (std::size_t d = 0; d < n_dummy_; ++d) {
+    // Dummy: mass, density and stress depend on the soil particle it interacts with (pair loop).
+    const std::size_t k = n + n_ghost + d;
+    const Vec2 x = dummy_position_[d];
+    work_[k] = {x.x(), x.y(), dummy_velocity_[d].x(), dummy_velocity_[d].y(), 0, 0, 0, 0, 0, 0};
+    boundary_position_[d] = x;
+    if (reference) moved2 = std::max(moved2, (x - work_reference_[k]).squaredNorm());
+  }
+  for (std::size_t w = 0; w < geometry_.size() && reference; ++w) {
+    for (std::size_t p = 0; p < geometry_[w].points.size(); ++p) {
+      moved2 = std::max(moved2, (geometry_[w].points[p] - wall_reference_[w][p]).squaredNorm());
+    }
+  }
+  n_active_ghosts_ = active;
+  return moved2;
+}
+
+void SphSolver::rebuild_neighbours(const Particles& particles) {
+  const std::size_t n = particles.size();
+  select_ghosts(particles);
+  const std::size_t n_ghost = ghost_source_.size();
+  const std::size_t n_work = n + n_ghost + n_dummy_;
+  work_.resize(n_work);
+  work_r_.resize(setup_.options.artificial_stress > 0.0 ? n_work : 0);
+  work_wall_.resize(n_work);
+  boundary_position_.resize(n_dummy_ + n_ghost);
+  for (std::size_t k = 0; k < n; ++k) work_wall_[k] = -1;
+  for (std::size_t g = 0; g < n_ghost; ++g) {
+    work_wall_[n + g] = static_cast<std::int32_t>(ghost_wall_[g]);
+  }
+  for (std::size_t d = 0; d < n_dummy_; ++d) work_wall_[n + n_ghost + d] = dummy_wall_[d];
+
+  // The working order: soil particles sorted by cell (ghosts and dummies follow, unsorted: they
+  // lie along the walls anyway).
+  const double cell = kernel_.support_radius() + skin_;
+  all_position_.resize(n);
+  std::copy(particles.position.begin(), particles.position.end(), all_position_.begin());
+  try {
+    cells_.build(all_position_, cell);
+  } catch (const std::domain_error& e) {
+    throw NumericalFailure(std::string("neighbour search: ") + e.what());
+  }
+  const auto sorted = cells_.sorted();
+  std::copy(sorted.begin(), sorted.end(), order_.begin());
+  rebuild_ = true;
+  gather(particles);
+
+  // Rows over the working positions: soil and ghosts first, dummies last.
+  all_position_.resize(n_work);
+  for (std::size_t k = 0; k < n_work; ++k) all_position_[k] = Vec2(work_[k].x, work_[k].y);
+  cells_.build(all_position_, cell);
+  neighbours_.build(cells_, all_position_, n, cell, n + n_ghost);
+  work_reference_.assign(all_position_.begin(), all_position_.end());
+  for (std::size_t w = 0; w < geometry_.size(); ++w) wall_reference_[w] = geometry_[w].points;
+  rebuild_ = false;
+  ++counters_.neighbour_builds;
+  counters_.neighbours_max = std::max(counters_.neighbours_max, neighbours_.max_count());
+}
+
+}  // namespace duet::sph

@@ -1,0 +1,151 @@
+// Oedometer benchmark (Peng 2015 5.1) through SPH at smoke resolution (dp = 2.5 cm, 800 particles):
+// the axial stress-strain curve in loading against the element test of the same model, and K0
+// against Peng eq (38).
+//
+// Strain: the plate moves at constant speed, so the SPH velocity gradient is the logarithmic
+// strain rate v / L(t), and the element driver sums strain increments, i.e. it also integrates
+// the logarithmic strain. The curves are compared at eps = -ln(1 - u / H): with the stress growing
+// about exp(348 |eps|), comparing at u / H instead would put 5.5 % between them at 1.75 % strain.
+//
+// DUET_SPH_SET="key=value;key=value" appends scene overrides (e.g. spacing=0.01 for the paper's
+// resolution, or sph.cfl=... for a stability map) to the test's own.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "benchmarks/driver.hpp"
+#include "common/h5_writer.hpp"
+#include "common/scene_loader.hpp"
+#include "constitutive/element_test.hpp"
+#include "constitutive/registry.hpp"
+#include "sph/method.hpp"
+
+namespace duet {
+namespace {
+
+constexpr double kHeight = 1.0;             // m, the initial sample height (oedometer.toml)
+constexpr double kEndOfLoading = 1.75;      // s, the plate turns (oedometer.toml)
+constexpr double kTransientStrain = 0.001;  // log strain below which wave transients may dominate
+
+std::vector<std::string> overrides() {
+  std::vector<std::string> out{"spacing=0.025"};
+  if (const char* extra = std::getenv("DUET_SPH_SET")) {
+    std::stringstream s(extra);
+    for (std::string item; std::getline(s, item, ';');) out.push_back(item);
+  }
+  return out;
+}
+
+struct OedometerRun {
+  Scene scene;
+  RunSummary summary;
+  std::vector<double> time, axial_stress, radial_stress, plate_displacement;
+};
+
+const OedometerRun& oedometer_run() {
+  static const OedometerRun run = [] {
+    OedometerRun r;
+    r.scene =
+        load_scene(std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/oedometer.toml", overrides());
+    MethodRegistry methods;
+    sph::register_sph(methods);
+    // One folder per process: concurrent runs of this test (shared machines) do not mix files
+    const auto dir = (std::filesystem::temp_directory_path() /
+                      ("duet-sph-oedometer-" + std::to_string(::getpid())))
+                         .string();
+    std::filesystem::remove_all(dir);
+    r.summary = run_scene(r.scene, methods.find("sph"), RunOptions{dir, false});
+    const std::string h5 = dir + "/run.h5";
+    r.time = read_series(h5, "time");
+    r.axial_stress = read_series(h5, "axial_stress");
+    r.radial_stress = read_series(h5, "radial_stress");
+    r.plate_displacement = read_series(h5, "plate_displacement");
+    std::printf("oedometer: dp %.3f m, %ld particles, %ld steps, %.1f s wall, in %s\n",
+                r.scene.spacing, r.summary.particles, r.summary.steps, r.summary.wall_seconds,
+                dir.c_str());
+    return r;
+  }();
+  return run;
+}
+
+/// Element test of the scene's material along the oedometric path from its isotropic start.
+std::vector<constitutive::ElementRow> element_curve(const Scene& scene, double strain) {
+  const Material& m = scene.materials.front();
+  const auto model = constitutive::make_model(m.model, m.parameters, "material." + m.name);
+  constitutive::ElementTest test;
+  test.kind = constitutive::ElementTestKind::oedometer;
+  test.initial_stress = -scene.initial_stress.pressure;
+  test.strain = -strain;
+  test.increments = static_cast<int>(std::ceil(strain / 5e-5));
+  return constitutive::run_element_test(*model, test);
+}
+
+/// sigma_yy of the element curve at (negative) axial strain eps, log-linear between rows (the
+/// curve is close to exponential).
+double element_axial_stress(const std::vector<constitutive::ElementRow>& rows, double eps) {
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    if (rows[k].axial_strain <= eps) {
+      const auto& a = rows[k - 1];
+      const auto& b = rows[k];
+      const double s = (eps - a.axial_strain) / (b.axial_strain - a.axial_strain);
+      return -std::exp(std::log(-a.axial_stress) +
+                       s * (std::log(-b.axial_stress) - std::log(-a.axial_stress)));
+    }
+  }
+  return std::nan("");
+}
+
+TEST(OedometerBenchmark, AxialStressFollowsTheElementCurveWithinFivePercentInLoading) {
+  // Arrange
+  const OedometerRun& run = oedometer_run();
+  ASSERT_TRUE(run.summary.completed())
+      << run.summary.failure_reason << " at t = " << run.summary.failure_time;
+  const auto rows = element_curve(run.scene, 0.018);
+  // Act: the relative deviation at every recorded sample of the loading
+  double worst = 0.0, worst_at = 0.0, worst_transient = 0.0, worst_transient_at = 0.0;
+  long samples = 0;
+  for (std::size_t k = 1; k < run.time.size(); ++k) {
+    if (run.time[k] > kEndOfLoading + 1e-9) break;
+    // Tension positive: the soil pushes the plate up, sigma_yy = -force_y / width
+    const double eps = std::log(1.0 + run.plate_displacement[k] / kHeight);
+    const double sigma_sph = -run.axial_stress[k];
+    const double sigma_element = element_axial_stress(rows, eps);
+    const double deviation = std::abs(sigma_sph - sigma_element) / std::abs(sigma_element);
+    if (-eps < kTransientStrain) {
+      if (deviation > worst_transient) worst_transient = deviation, worst_transient_at = -eps;
+    } else {
+      ++samples;
+      if (deviation > worst) worst = deviation, worst_at = -eps;
+    }
+  }
+  std::printf(
+      "axial stress vs element curve: worst %.2f %% at strain %.4f %% over %ld samples from "
+      "%.2f %%; below it (wave transients) worst %.2f %% at %.4f %%\n",
+      100 * worst, 100 * worst_at, samples, 100 * kTransientStrain, 100 * worst_transient,
+      100 * worst_transient_at);
+  // Assert
+  EXPECT_GT(samples, 100);
+  EXPECT_LT(worst, 0.05);
+}
+
+TEST(OedometerBenchmark, EarthPressureAtRestInLoadingWithinTwoPercentOfPengEq38) {
+  // Arrange
+  const OedometerRun& run = oedometer_run();
+  ASSERT_TRUE(run.summary.completed())
+      << run.summary.failure_reason << " at t = " << run.summary.failure_time;
+  // Act: the scene's score, sigma_3 / sigma_1 at the end of loading
+  const Accuracy& k0 = run.summary.accuracy.at("K0");
+  const auto rows = element_curve(run.scene, -std::log(1.0 - 0.0175));
+  std::printf("K0 %.4f (eq 38: %.4f, error %.2f %%; element test at the same strain %.4f)\n",
+              k0.value, k0.reference, 100 * k0.rel_error,
+              rows.back().lateral_stress / rows.back().axial_stress);
+  // Assert
+  EXPECT_LT(k0.rel_error, 0.02);
+}
+
+}  // namespace
+}  // namespace duet
