@@ -45,7 +45,7 @@ const std::vector<std::string> kSphKeys = {"kernel",      "h_over_dp",         "
                                            "wall_stress", "integrator",        "continuity"};
 const std::vector<std::string> kSpfemKeys = {"alpha_factor",  "time_step_safety", "damping",
                                              "local_damping", "stabilisation",    "remesh",
-                                             "remesh_angle",  "implicit"};
+                                             "remesh_angle",  "boundary_layer",   "implicit"};
 const std::vector<std::string> kImplicitKeys = {"tolerance", "max_iterations", "load_steps",
                                                 "max_step_cuts"};
 
