@@ -49,7 +49,7 @@ std::vector<double> frame_kinetic_energy(const std::string& h5) {
   std::vector<double> energy;
   const std::size_t n = count_frames(h5);
   Frame previous = read_frame(h5, 0);
-  const std::vector<double>& mass = previous.scalars.at("mass");
+  const std::vector<double> mass = previous.scalars.at("mass");  // a copy: previous is reassigned
   for (std::size_t k = 1; k < n; ++k) {
     Frame frame = read_frame(h5, k);
     const double dt = frame.time - previous.time;
