@@ -96,10 +96,11 @@ void ExplicitSolver::update_mesh(const Particles& particles) {
   const duet::SpfemOptions& o = setup_.options;
   const std::vector<Vec2>& x = particles.position;
   bool remesh = !have_mesh_ || o.remesh == Remesh::every_step;
+  double angle = 180.0;  // smallest angle of the kept mesh at x (when it was measured)
   if (!remesh) {
     // Remesh on angle: keep the connectivity while the smallest angle stays above the threshold;
     // an inverted triangle (negative angle) always forces a new mesh.
-    const double angle = smallest_angle(mesh_, x);
+    angle = smallest_angle(mesh_, x);
     if (angle < o.remesh_angle) {
       remesh = true;
       if (angle <= 0.0) ++counters_.forced_remeshes;
@@ -132,29 +133,34 @@ void ExplicitSolver::update_mesh(const Particles& particles) {
         counters_.isolated_nodes_max,
         static_cast<std::size_t>(std::count(mesh_.component.begin(), mesh_.component.end(), -1)));
   }
-  // papers/004 smoothing slides: A_k = sum_j A_e^j / 3, b_lh(x_k) = (1 / A_k) sum_j A_e^j N_l,h^j /
-  // 3
-  build_smoothing_cells(mesh_, x, cells_);
-  if (!mesh_.triangles.empty()) {
-    counters_.smallest_angle = std::min(counters_.smallest_angle, smallest_angle(mesh_, x));
+  // papers/004 smoothing slides: A_k = sum_j A_e^j / 3, b_lh(x_k) = (1/A_k) sum_j A_e^j N_l,h^j
+  // / 3. The particles are cell-centred (the particle at (i + 1/2) dp carries dp^2), so the mesh
+  // through them lies dp/2 inside the material on every face: the boundary layer of depth dp/2
+  // gives the surface cells the skin the mesh misses, so stiffness and the nodes' (particle) mass
+  // agree.
+  const double layer = o.boundary_layer ? 0.5 * setup_.spacing : 0.0;
+  if (remesh) {
+    build_smoothing_cells(mesh_, x, cells_, layer);
+  } else {
+    refill_smoothing_cells(mesh_, x, cells_, layer);  // same triangles: keep the row structure
   }
+  if (remesh && !mesh_.triangles.empty()) angle = smallest_angle(mesh_, x);
+  counters_.smallest_angle = std::min(counters_.smallest_angle, angle);
 }
 
-double ExplicitSolver::time_step(const Particles& particles) const {
-  const std::vector<Vec2>& x = particles.position;
-  double l_min = std::numeric_limits<double>::infinity();
-  const std::size_t n_triangles = mesh_.triangles.size();
-#pragma omp parallel for schedule(static) reduction(min : l_min) if (n_triangles > kParallelMin)
-  for (std::size_t e = 0; e < n_triangles; ++e) {
-    const Triangle& t = mesh_.triangles[e];
-    const Vec2& a = x[static_cast<std::size_t>(t[0])];
-    const Vec2& b = x[static_cast<std::size_t>(t[1])];
-    const Vec2& c = x[static_cast<std::size_t>(t[2])];
-    const double twice_area = std::abs(cross(b - a, c - a));
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    l_min = std::min(l_min, twice_area / longest);  // smallest altitude
+double ExplicitSolver::time_step() const {
+  // papers/004 Algorithm 1 step 3 computes dt from the node volumes: l_min is the smallest
+  // smoothing-cell size sqrt(A_k) over the nodes in the mesh. (The smallest triangle altitude fell
+  // 100x on thin alpha-shape surface triangles, which a node's cell shares with its neighbours;
+  // a node held by slivers alone still has a tiny cell and still cuts dt.)
+  const std::size_t n = cells_.area.size();
+  double smallest_area = std::numeric_limits<double>::infinity();
+#pragma omp parallel for schedule(static) reduction(min : smallest_area) if (n > kParallelMin)
+  for (std::size_t k = 0; k < n; ++k) {
+    if (cells_.area[k] > 0.0) smallest_area = std::min(smallest_area, cells_.area[k]);
   }
-  if (n_triangles == 0) l_min = setup_.spacing;
+  const double l_min =
+      std::isfinite(smallest_area) ? std::sqrt(smallest_area) : setup_.spacing;  // no mesh: dp
   double c_max = 0.0;
   for (const double c : wave_speed_) c_max = std::max(c_max, c);
   if (!(c_max > 0.0)) {
@@ -347,7 +353,7 @@ double ExplicitSolver::step(Particles& particles, double time) {
   double dt = 0.0;
   {
     ScopedTimer t(timers_, Phase::constitutive);
-    dt = time_step(particles);
+    dt = time_step();
     update_stress(particles, dt);
   }
   {

@@ -84,7 +84,7 @@ class ExplicitSolver {
 
  private:
   void update_mesh(const Particles& particles);
-  double time_step(const Particles& particles) const;
+  double time_step() const;
   void update_stress(Particles& particles, double dt);
   void assemble_forces(const Particles& particles);
   void add_stabilisation(const Particles& particles);

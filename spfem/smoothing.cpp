@@ -1,13 +1,19 @@
 #include "spfem/smoothing.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 
 namespace duet::spfem {
 namespace {
 
 using Index = std::int32_t;
+
+// Below this many nodes a loop runs on one thread: a parallel region costs more than the work,
+// and far more when the cores are shared (as in spfem/explicit_solver.cpp).
+constexpr std::ptrdiff_t kParallelMin = 2048;
 
 // In-plane vector turned a quarter turn counter-clockwise: (x, y) -> (-y, x).
 Vec2 quarter_turn(const Vec2& a) {
@@ -103,9 +109,57 @@ Index row_length(const SmoothingCells& cells, const std::vector<Triangle>& trian
   return 1 + n_seen;
 }
 
+// True when `node` is a corner of exactly one triangle around k: then the edge (k, node) belongs
+// to that triangle only and lies on the surface of the mesh.
+bool is_surface_edge(const SmoothingCells& cells, const std::vector<Triangle>& triangles,
+                     std::size_t k, Index node) {
+  int count = 0;
+  for (Index i = cells.triangle_offset[k]; i < cells.triangle_offset[k + 1]; ++i) {
+    const Triangle& t = triangles[cells.node_triangles[i]];
+    if (t[0] == node || t[1] == node || t[2] == node) ++count;
+  }
+  return count == 1;
+}
+
+double longest_edge(const Triangle& t, const std::vector<Vec2>& points) {
+  const Vec2& a = points[t[0]];
+  const Vec2& b = points[t[1]];
+  const Vec2& c = points[t[2]];
+  return std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+}
+
+// Adds factor x (A_e / 3) grad N_l^e for the three corners l of t to row k (entries found or
+// appended between row_begin and row_end).
+void add_to_row(const Triangle& t, const TriangleTerms& terms, double factor, Index row_begin,
+                Index& row_end, SmoothingCells& cells) {
+  for (int corner = 0; corner < 3; ++corner) {
+    Index entry = row_begin;
+    while (entry < row_end && cells.column[entry] != t[corner]) ++entry;
+    if (entry == row_end) {
+      cells.column[entry] = t[corner];
+      cells.gradient[entry].setZero();
+      ++row_end;
+    }
+    cells.gradient[entry] += factor * terms.weighted_gradient[corner];
+  }
+}
+
 // Row k: b_kl A_k = sum over the triangles e around k of (A_e / 3) grad N_l^e, then A_k and b_kl.
+// Boundary layer (depth > 0): the particles are cell-centred, so the mesh through them lies dp/2
+// inside the material on every face. Each surface edge (k, m) of a triangle e owns a strip of that
+// depth outside it; k gets half, s = |km| depth / 2, on A_k and s grad N_l^e on A_k b_kl (the
+// linear field of e extended into the strip). A thin triangle (smallest altitude below the depth,
+// e.g. an alpha-shape sliver) would extrapolate its gradient, of order 1 / altitude, far beyond
+// itself and stiffen the node without bound (the time step from sqrt(A_k) would not see it): its
+// strip is spread over the node's well-shaped triangles in proportion to A_e instead, and dropped
+// (A_k loses it) where the node has none. At a surface node with one incoming and one outgoing
+// surface edge turning by theta, the mitred wedge between their strips, depth^2 tan(theta / 2)
+// (negative where the strips overlap at a concave corner; |tan| capped at 1, the square of a
+// right-angled corner), is spread the same way. Every term is an exact element gradient times a
+// weight, so a linear velocity is still reproduced exactly (patch test) and
+// F_int = sum_k A_k B_k^T sigma_k keeps its virtual power.
 void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& points,
-              std::size_t k, SmoothingCells& cells) {
+              std::size_t k, double layer_depth, bool on_surface, SmoothingCells& cells) {
   const Index row_begin = cells.offset[k];
   Index row_end = row_begin;
   if (cells.offset[k + 1] > row_begin) {  // a node in no triangle has an empty row
@@ -113,22 +167,71 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
     cells.gradient[row_end].setZero();
     ++row_end;
   }
+  const double depth = layer_depth;
   double area = 0.0;
+  double plain_area = 0.0;       // sum_e A_e / 3, the slides' cell
+  double well_area = 0.0;        // sum_e A_e / 3 over the well-shaped triangles at k
+  double spread = 0.0;           // layer area spread over them
+  Vec2 incoming = Vec2::Zero();  // surface edges at k, counter-clockwise (material on the left)
+  Vec2 outgoing = Vec2::Zero();
+  int n_incoming = 0;
+  int n_outgoing = 0;
   for (Index i = cells.triangle_offset[k]; i < cells.triangle_offset[k + 1]; ++i) {
     const Triangle& t = triangles[cells.node_triangles[i]];
     const TriangleTerms terms = triangle_terms(t, points);
-    area += terms.area / 3.0;  // papers/004 "Strain smoothing technique": A^(k) = (1/3) sum A_e^j
-    for (int corner = 0; corner < 3; ++corner) {
-      Index entry = row_begin;
-      while (entry < row_end && cells.column[entry] != t[corner]) ++entry;
-      if (entry == row_end) {
-        cells.column[entry] = t[corner];
-        cells.gradient[entry].setZero();
-        ++row_end;
+    plain_area += terms.area / 3.0;  // papers/004 "Strain smoothing": A^(k) = (1/3) sum A_e^j
+    // Weight of grad N^e in this row: A_e / 3, plus the strips of e's surface edges at k
+    // (weighted_gradient holds (A_e / 3) grad N^e, so the strips enter as a factor on it).
+    double factor = 1.0;
+    const bool well_shaped =
+        depth > 0.0 && on_surface && 2.0 * terms.area >= depth * longest_edge(t, points);
+    if (well_shaped) well_area += terms.area / 3.0;
+    if (depth > 0.0 && on_surface) {
+      const int at = t[0] == Index(k) ? 0 : (t[1] == Index(k) ? 1 : 2);
+      const Index next = t[(at + 1) % 3];
+      const Index previous = t[(at + 2) % 3];
+      for (const Index m : {next, previous}) {
+        if (!is_surface_edge(cells, triangles, k, m)) continue;
+        const Vec2 edge = m == next ? points[next] - points[k] : points[k] - points[previous];
+        const double length = edge.norm();
+        const double strip = 0.5 * length * depth;  // this node's half of the strip
+        area += strip;
+        if (well_shaped) {
+          factor += strip / (terms.area / 3.0);  // strip x grad N^e
+        } else {
+          spread += strip;
+        }
+        if (m == next) {
+          outgoing = edge;
+          ++n_outgoing;
+        } else {
+          incoming = edge;
+          ++n_incoming;
+        }
       }
-      cells.gradient[entry] += terms.weighted_gradient[corner];
     }
+    add_to_row(t, terms, factor, row_begin, row_end, cells);
   }
+  if (n_incoming == 1 && n_outgoing == 1) {
+    const double turn = std::atan2(cross(incoming, outgoing), incoming.dot(outgoing));
+    const double wedge = depth * depth * std::clamp(std::tan(0.5 * turn), -1.0, 1.0);
+    area += wedge;
+    spread += wedge;
+  }
+  if (spread != 0.0 && well_area > 0.0) {
+    // spread x the gradient smoothed over the well-shaped triangles:
+    // sum_e (spread / well_area) (A_e / 3) grad N^e
+    for (Index i = cells.triangle_offset[k]; i < cells.triangle_offset[k + 1]; ++i) {
+      const Triangle& t = triangles[cells.node_triangles[i]];
+      const TriangleTerms terms = triangle_terms(t, points);
+      if (2.0 * terms.area >= depth * longest_edge(t, points)) {
+        add_to_row(t, terms, spread / well_area, row_begin, row_end, cells);
+      }
+    }
+  } else {
+    area -= spread;  // no well-shaped triangle to carry it: the node gets no layer there
+  }
+  area += plain_area;
   assert(row_end == cells.offset[k + 1]);
   assert((row_end == row_begin || area > 0.0) && "a smoothing-cell area is not positive");
   cells.area[k] = area;
@@ -141,7 +244,7 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
 }  // namespace
 
 void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
-                           SmoothingCells& cells) {
+                           SmoothingCells& cells, double layer_depth) {
   const std::size_t n_nodes = points.size();
   const std::vector<Triangle>& triangles = mesh.triangles;
   build_adjacency(triangles, n_nodes, cells);
@@ -150,24 +253,22 @@ void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& point
   cells.offset.resize(n_nodes + 1);
   cells.offset[0] = 0;
   const std::ptrdiff_t n = std::ptrdiff_t(n_nodes);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     cells.offset[k + 1] = row_length(cells, triangles, std::size_t(k));
   }
   for (std::size_t k = 1; k <= n_nodes; ++k) cells.offset[k] += cells.offset[k - 1];
 
-  // Fill pass: each row written by one thread only.
   const std::size_t n_entries = std::size_t(cells.offset[n_nodes]);
   cells.area.resize(n_nodes);
   cells.column.resize(n_entries);
   cells.gradient.resize(n_entries);
   cells.transpose.resize(n_entries);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t k = 0; k < n; ++k) fill_row(triangles, points, std::size_t(k), cells);
+  refill_smoothing_cells(mesh, points, cells, layer_depth);
 
-    // Transpose: the row of the smaller node of each pair {k, l} finds (l, k) in row l (rows are
-    // short, about seven entries) and sets both slots; every slot has exactly one writer.
-#pragma omp parallel for schedule(static)
+  // Transpose: the row of the smaller node of each pair {k, l} finds (l, k) in row l (rows are
+  // short, about seven entries) and sets both slots; every slot has exactly one writer.
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     for (Index entry = cells.offset[k]; entry < cells.offset[k + 1]; ++entry) {
       const Index l = cells.column[entry];
@@ -185,7 +286,7 @@ void smoothed_velocity_gradients(const SmoothingCells& cells, const std::vector<
                                  std::vector<Mat2>& gradient) {
   const std::ptrdiff_t n = std::ptrdiff_t(cells.offset.size()) - 1;
   gradient.resize(std::size_t(n));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     Mat2 l_k = Mat2::Zero();
     for (Index entry = cells.offset[k]; entry < cells.offset[k + 1]; ++entry) {
@@ -200,7 +301,7 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
                      std::vector<Vec2>& force) {
   const std::ptrdiff_t n = std::ptrdiff_t(cells.offset.size()) - 1;
   force.resize(std::size_t(n));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::ptrdiff_t l = 0; l < n; ++l) {
     Vec2 f = Vec2::Zero();
     // Row l lists every k whose cell sees node l; b_kl is entry (k, l), read through transpose.
@@ -211,6 +312,22 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
       f.noalias() += cells.area[k] * (stress[k].topLeftCorner<2, 2>() * b_kl);
     }
     force[l] = f;
+  }
+}
+
+void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
+                            SmoothingCells& cells, double layer_depth) {
+  // Fill pass: each row written by one thread only; the rows come out in the same order for the
+  // same triangles, so offsets and the transpose map stay valid. Only a surface node (flagged by
+  // the alpha mesh; every node when the flags are absent, e.g. a mesh built by hand) can own a
+  // strip.
+  const std::size_t n_nodes = points.size();
+  const bool know_surface = mesh.surface.size() == n_nodes;
+  const std::ptrdiff_t n = std::ptrdiff_t(n_nodes);
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    fill_row(mesh.triangles, points, std::size_t(k), layer_depth,
+             !know_surface || mesh.surface[std::size_t(k)] != 0, cells);
   }
 }
 

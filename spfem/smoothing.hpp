@@ -28,8 +28,21 @@ struct SmoothingCells {
 };
 
 /// Builds the cells of `mesh` at the current `points`. Reuses the storage of `cells`.
+/// `layer_depth` (m) > 0 adds the boundary layer: each surface edge (a, b) (an edge of exactly one
+/// kept triangle e) owns a strip of that depth outside it, area |ab| depth, half to each of a and
+/// b, and the strip's gradient is grad N^e (the linear field of e extended into the strip); the
+/// mitred wedge between the strips at a surface node turning by theta, depth^2 tan(theta / 2)
+/// (|tan| capped at 1), goes to that node. The particles are cell-centred, so the mesh through
+/// them lies dp/2 inside the material on every face: depth dp/2 gives the cells of a lattice
+/// rectangle exactly the body's area while the nodes carry the full particle mass. 0 = the
+/// slides' plain cells.
 void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
-                           SmoothingCells& cells);
+                           SmoothingCells& cells, double layer_depth = 0.0);
+
+/// Recomputes areas and gradients of cells built by build_smoothing_cells from this same `mesh`
+/// (same triangles) at new `points`: the row structure and the transpose map are kept.
+void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
+                            SmoothingCells& cells, double layer_depth = 0.0);
 
 /// L_k(i, j) = dv_i/dx_j = sum_l v_l,i b_kl,j at every node (zero for a node in no triangle).
 void smoothed_velocity_gradients(const SmoothingCells& cells, const std::vector<Vec2>& velocity,
