@@ -6,6 +6,7 @@
 #include "common/geometry.hpp"
 #include "common/input_error.hpp"
 #include "common/scene.hpp"
+#include "common/scene_loads.hpp"
 #include "constitutive/registry.hpp"
 #include "spfem/explicit_solver.hpp"
 
@@ -69,30 +70,15 @@ class EspfemMethod final : public Solver {
 
   void initialise(const Scene& scene, Particles& particles) override {
     solver_.initialise(particles);
-    // Loads: each shared equally by the nodes of its body initially inside its box.
-    loaded_.assign(scene.loads.size(), {});
-    for (std::size_t l = 0; l < scene.loads.size(); ++l) {
-      const Load& load = scene.loads[l];
-      for (std::size_t i = 0; i < particles.size(); ++i) {
-        const Vec2& x = particles.position[i];
-        if (particles.body[i] == load.body_index && (x.array() >= load.min.array()).all() &&
-            (x.array() <= load.max.array()).all()) {
-          loaded_[l].push_back(i);
-        }
-      }
-      if (loaded_[l].empty()) {
-        throw InputError("load." + load.name + ": no particle of body " + load.body +
-                         " lies in its box");
-      }
-    }
+    loaded_ = loaded_particles(scene, particles);
     if (scene.initial_stress.kind == InitialStressKind::gravity_loading) {
-      apply_loads(scene, 0.0);
+      apply_loads(scene, loaded_, 0.0, solver_.external_force());
       solver_.settle(particles, scene.initial_stress.time, scene.initial_stress.damping);
     }
   }
 
   double step(const Scene& scene, Particles& particles, double time) override {
-    apply_loads(scene, time);
+    apply_loads(scene, loaded_, time, solver_.external_force());
     return solver_.step(particles, time);
   }
 
@@ -109,18 +95,8 @@ class EspfemMethod final : public Solver {
   Json diagnostics() const override { return solver_.diagnostics(); }
 
  private:
-  void apply_loads(const Scene& scene, double time) {
-    auto& force = solver_.external_force();
-    std::fill(force.begin(), force.end(), Vec2::Zero());
-    for (std::size_t l = 0; l < scene.loads.size(); ++l) {
-      const Vec2 share =
-          schedule_value(scene.loads[l].force, time) / static_cast<double>(loaded_[l].size());
-      for (const std::size_t i : loaded_[l]) force[i] += share;
-    }
-  }
-
   ExplicitSolver solver_;
-  std::vector<std::vector<std::size_t>> loaded_;
+  LoadedParticles loaded_;
 };
 
 }  // namespace
