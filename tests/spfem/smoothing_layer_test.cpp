@@ -6,10 +6,6 @@
 // virtual power.
 #include <gtest/gtest.h>
 
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,37 +14,13 @@
 #include <vector>
 
 #include "spfem/smoothing.hpp"
+#include "tests/spfem/delaunay_mesh.hpp"
 
 namespace duet::spfem {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, Kernel>;
-using DataStructure =
-    CGAL::Triangulation_data_structure_2<VertexBase, CGAL::Triangulation_face_base_2<Kernel>>;
-using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, DataStructure>;
-
-double signed_area(const Triangle& t, const std::vector<Vec2>& x) {
-  const Vec2 ab = x[t[1]] - x[t[0]];
-  const Vec2 ac = x[t[2]] - x[t[0]];
-  return 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
-}
-
-// All finite Delaunay faces of `points`, counter-clockwise.
-AlphaMesh delaunay_mesh(const std::vector<Vec2>& points) {
-  std::vector<std::pair<Kernel::Point_2, std::int32_t>> input;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    input.emplace_back(Kernel::Point_2(points[i].x(), points[i].y()), std::int32_t(i));
-  }
-  const Delaunay delaunay(input.begin(), input.end());
-  AlphaMesh mesh;
-  for (auto face = delaunay.finite_faces_begin(); face != delaunay.finite_faces_end(); ++face) {
-    Triangle t{face->vertex(0)->info(), face->vertex(1)->info(), face->vertex(2)->info()};
-    if (signed_area(t, points) < 0.0) std::swap(t[1], t[2]);
-    mesh.triangles.push_back(t);
-  }
-  return mesh;
-}
+using testing::delaunay_mesh;
+using testing::signed_area;
 
 // The particles of a W x H rectangle sampled cell-centred, as the scenes do: (i + 1/2) dp.
 struct Lattice {
