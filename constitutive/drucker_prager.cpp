@@ -76,9 +76,10 @@ DruckerPragerReturn DruckerPrager::return_mapping(const Mat3& trial) const {
   const Mat3 s_trial = deviator(trial);
   const double rho_trial = std::sqrt(0.5 * contract(s_trial, s_trial));  // sqrt(J2)
   r.rho_trial = rho_trial;
-  if (rho_trial > 0.0) r.unit_deviator = s_trial / (sqrt2 * rho_trial);
+  if (rho_trial > 0.0) r.unit_deviator = (1.0 / (sqrt2 * rho_trial)) * s_trial;
 
-  const double tolerance = on_surface_tolerance * stress_scale(trial);
+  // stress_scale(trial), from the invariants at hand
+  const double tolerance = on_surface_tolerance * (std::abs(p_trial) + rho_trial + cone_.k_c);
   const double f_trial = 3.0 * alpha_phi * p_trial + rho_trial - cone_.k_c;  // eq 5, I1 = 3 p
   if (f_trial <= tolerance && p_trial <= p_t + tolerance) {
     r.regime = DruckerPragerRegime::elastic;
@@ -138,6 +139,15 @@ void DruckerPrager::integrate(const Mat3& d_strain, Mat3& stress,
 }
 
 void DruckerPrager::correct(Mat3& stress, std::span<double> internal) const {
+  // integrate() leaves the stress on or inside the surface; only a stress from elsewhere (a
+  // rate-form update) needs the return. The admissibility test of return_mapping, first.
+  const double p = mean_stress(stress);
+  const double rho = std::sqrt(j2(stress));
+  const double tolerance = on_surface_tolerance * (std::abs(p) + rho + cone_.k_c);
+  if (3.0 * cone_.alpha_phi * p + rho - cone_.k_c <= tolerance &&
+      p <= tension_cutoff_ + tolerance) {
+    return;
+  }
   const DruckerPragerReturn result = return_mapping(stress);
   record_plastic_step(stress, result, internal);
   stress = result.stress;
