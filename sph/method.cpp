@@ -43,21 +43,28 @@ SphSetup make_setup(const Scene& scene) {
     setup.walls.push_back({w.name, w.points, w.condition, wall_velocity(w)});
   }
   for (const RigidBody& b : scene.rigid_bodies) {
-    if (b.surface == Surface::friction) {
-      throw InputError("rigid_body." + b.name +
-                       ".surface = \"friction\": the frictional contact of simhypo-sand eqs "
-                       "39-40 is not implemented in the SPH solver yet (use rough or smooth)");
-    }
-    // A rigid body with prescribed motion: its closed outline as a wall, rough = dummy particles
-    // (no slip), smooth = ghost particles (free slip).
-    std::vector<Vec2> outline = b.outline;
-    outline.push_back(outline.front());
     WallVelocity velocity;
     if (!b.velocity.empty()) {
       velocity = [schedule = b.velocity](double t, const Vec2&) {
         return schedule_value(schedule, t);
       };
     }
+    if (b.surface == Surface::friction) {
+      // simhypo-sand eqs 39-40 (sph/rigid_contact.hpp): the penalty stiffness 2 m / dt^2 is
+      // stable with the leapfrog update only (Verlet's velocity leap over 2 dt amplifies it).
+      if (scene.sph.integrator != SphIntegrator::leapfrog) {
+        throw InputError("rigid_body." + b.name +
+                         ".surface = \"friction\": the frictional contact (simhypo-sand eqs "
+                         "39-40) needs sph.integrator = \"leapfrog\" (the three-level verlet "
+                         "scheme is unstable with its penalty stiffness 2 m / dt^2)");
+      }
+      setup.frictional_bodies.push_back({b.name, b.outline, std::move(velocity), b.friction});
+      continue;
+    }
+    // A rigid body with prescribed motion: its closed outline as a wall, rough = dummy particles
+    // (no slip), smooth = ghost particles (free slip).
+    std::vector<Vec2> outline = b.outline;
+    outline.push_back(outline.front());
     setup.walls.push_back(
         {b.name, std::move(outline),
          b.surface == Surface::smooth ? WallCondition::free_slip : WallCondition::no_slip,
@@ -89,6 +96,10 @@ class SphMethod final : public Solver {
     for (std::size_t w = 0; w < solver_.walls().size(); ++w) {
       out.push_back({solver_.walls()[w].name, solver_.wall_forces()[w]});
     }
+    const RigidContact& contact = solver_.rigid_contact();
+    for (std::size_t b = 0; b < contact.bodies.size(); ++b) {
+      out.push_back({contact.bodies[b].name, contact.reaction[b]});
+    }
     return out;
   }
 
@@ -106,6 +117,7 @@ class SphMethod final : public Solver {
     j["penetrations_max"] = c.penetrations_max;
     j["penetrations_total"] = c.penetrations_total;
     j["penetrations_last_step"] = c.penetrations_last_step;
+    j["rigid_contacts_last_step"] = solver_.rigid_contact().contacts;
     j["dt_min"] = c.dt_min;
     j["dt_max"] = c.dt_max;
     j["steps"] = c.steps;

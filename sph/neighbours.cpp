@@ -112,6 +112,25 @@ void NeighbourLists::build(const CellList& cells, std::span<const Vec2> position
   }
 }
 
+void NeighbourLists::drop_lower_pairs(std::size_t below) {
+  const std::size_t n_rows = count_.size();
+  const std::size_t stride = stride_;
+#pragma omp parallel for schedule(static) if (n_rows >= 2048)
+  for (std::size_t i = 0; i < n_rows; ++i) {
+    std::uint32_t* row = index_.data() + i * stride;
+    std::size_t kept = 0;
+    for (std::size_t e = 0; e < early_[i]; ++e) {
+      const std::uint32_t j = row[e];
+      if (j < below && j < i) continue;
+      row[kept++] = j;
+    }
+    const std::size_t dropped = early_[i] - kept;
+    for (std::size_t e = early_[i]; e < count_[i]; ++e) row[e - dropped] = row[e];
+    early_[i] = static_cast<std::uint32_t>(kept);
+    count_[i] -= static_cast<std::uint32_t>(dropped);
+  }
+}
+
 std::size_t NeighbourLists::max_count() const {
   std::uint32_t m = 0;
   for (const auto c : count_) m = std::max(m, c);

@@ -68,6 +68,10 @@ class NeighbourLists {
   std::span<const std::uint32_t> late(std::size_t i) const {
     return {index_.data() + i * stride_ + early_[i], count_[i] - early_[i]};
   }
+  /// Keeps each pair among the first `below` indices once: row i loses every j < i (j < below)
+  /// of its early part, so a pair loop over the rows can scatter to both ends (Newton's third
+  /// law) and touch each pair once. Rows of the other indices are unchanged.
+  void drop_lower_pairs(std::size_t below);
   /// Largest row length of the last build.
   std::size_t max_count() const;
   /// Capacity of a row (grows by rebuild when a row overflows).

@@ -96,6 +96,11 @@ void SphSolver::initialise(Particles& particles) {
       dummy_wall_.push_back(static_cast<std::int32_t>(w));
     }
   }
+  // Frictional rigid bodies (simhypo eqs 39-40, sph/rigid_contact.hpp): their outlines follow
+  // the walls in geometry_ (so the penetration check counts them), with no dummies or ghosts.
+  contact_.bodies = setup_.frictional_bodies;
+  for (const FrictionalBodySpec& b : contact_.bodies) geometry_.push_back(outward_geometry(b));
+  initialise_contact(contact_, particles.position, dp, n_threads);
   wall_reference_.clear();
   for (const WallGeometry& g : geometry_) wall_reference_.push_back(g.points);
   n_dummy_ = dummy_position_.size();
@@ -130,6 +135,7 @@ void SphSolver::initialise(Particles& particles) {
   wall_force_.assign(setup_.walls.size(), Vec2::Zero());
   wall_force_scratch_.assign(static_cast<std::size_t>(n_threads) * setup_.walls.size(),
                              Vec2::Zero());
+  pair_sum_.resize(static_cast<std::size_t>(n_threads) * n);
   velocity_old_ = particles.velocity;
   stress_old_ = particles.stress;
   strain_old_ = particles.strain;
@@ -161,12 +167,120 @@ void SphSolver::pair_loop(const Particles& particles) {
   const PairData* work = work_.data();
   const SymR* work_r = work_r_.data();
   const std::int32_t* work_wall = work_wall_.data();
+  const double inf = std::numeric_limits<double>::infinity();
+  const bool parallel = n >= kParallelMin;
   std::fill(wall_force_scratch_.begin(), wall_force_scratch_.end(), Vec2::Zero());
   double a_max2 = 0.0;
+  int team = 1;
 
-  // Gather per soil particle, in working (cell) order: each thread writes only its own particles'
-  // results and its own wall-force slots, so the loop is free of races without atomics.
-#pragma omp parallel if (n >= kParallelMin)
+  // The terms of one pair (i, j) that both ends share: grad_i W_ij (g), v_i - v_j (v), and the
+  // bracket of eq 30, sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij (c). False when j lies
+  // in the skin, beyond 2h.
+  struct Pair {
+    double gx, gy, vx, vy, cxx, cyy, cxy;
+  };
+  const auto pair_terms = [&](const PairData& pi, const PairData& pj, double rho_j, double txx,
+                              double tyy, double txy, const SymR& r_i, const SymR& r_j, Pair& p) {
+    const double dx = pi.x - pj.x, dy = pi.y - pj.y;
+    const double r2 = dx * dx + dy * dy;
+    if (r2 >= support2) return false;
+    const double r = std::sqrt(r2);
+    const double f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
+    p.gx = f * dx;  // grad_i W_ij
+    p.gy = f * dy;
+    p.vx = pi.vx - pj.vx;
+    p.vy = pi.vy - pj.vy;
+    // Peng 2015 eqs 26-27: artificial viscosity on approaching pairs
+    const double vr = p.vx * dx + p.vy * dy;
+    double pi_ij = 0.0;
+    if (vr < 0.0) {
+      const double phi = h * vr / (r2 + eps_h2);
+      pi_ij = (-alpha_cs * phi + beta * phi * phi) * 2.0 / (pi.rho + rho_j);
+    }
+    // Peng 2015 eq 30: sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij
+    p.cxx = pi.sxx + txx - pi_ij;
+    p.cyy = pi.syy + tyy - pi_ij;
+    p.cxy = pi.sxy + txy;
+    if (b > 0.0) {
+      // Peng 2015 eq 28: S_ij = f_ij^n (R_i + R_j), f_ij = W_ij / W(dp)
+      const double fn = std::pow(kernel_.value(r) / w_dp_, exponent_n_);
+      p.cxx += fn * (r_i.xx + r_j.xx);
+      p.cyy += fn * (r_i.yy + r_j.yy);
+      p.cxy += fn * (r_i.xy + r_j.xy);
+    }
+    return true;
+  };
+  // What a pair adds to one end i with neighbour mass m_j and volume V_j (the other end's share
+  // has the same form with m_i, V_i and -grad_i W_ij for the force).
+  const auto add = [](PairSum& s, const Pair& p, double m_j, double volume_j, double sign) {
+    s.ax += sign * m_j * (p.cxx * p.gx + p.cxy * p.gy);
+    s.ay += sign * m_j * (p.cxy * p.gx + p.cyy * p.gy);
+    // Peng 2015 eq 21: grad v_i = sum_j (v_j - v_i) (x) grad_i W_ij m_j / rho_j (the same sign
+    // at both ends: v and grad W both flip)
+    s.lxx -= p.vx * p.gx * volume_j;
+    s.lxy -= p.vx * p.gy * volume_j;
+    s.lyx -= p.vy * p.gx * volume_j;
+    s.lyy -= p.vy * p.gy * volume_j;
+    // simhypo-sand eq 24: d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij (same sign)
+    s.rho_rate += m_j * (p.vx * p.gx + p.vy * p.gy);
+  };
+
+  // Pass 1, soil and ghost pairs. Each soil pair sits in one row (NeighbourLists::
+  // drop_lower_pairs) and is evaluated once; its shares go to both ends in the thread's own
+  // buffer (a scatter into thread-private memory: no races, no atomics), summed in pass 2. Ghosts
+  // act on their row's particle only. Peng 2015 eq 31 needs, for the dummies, the smallest normal
+  // stresses among each particle's soil neighbours: gathered the same way.
+#pragma omp parallel if (parallel)
+  {
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+#pragma omp single nowait
+    team = omp_get_num_threads();
+    PairSum* sum = pair_sum_.data() + t * n;
+    std::fill(sum, sum + n, PairSum{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, inf});
+    Vec2* wall_force = wall_force_scratch_.data() + t * n_walls;
+#pragma omp for schedule(dynamic, 256)
+    for (std::size_t k = 0; k < n; ++k) {
+      const PairData& pi = work[k];
+      const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
+      PairSum s{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, inf};
+      Pair p;
+      for (const std::uint32_t j : neighbours_.early(k)) {
+        const PairData& pj = work[j];
+        const SymR& r_j = b > 0.0 ? work_r[j] : r_i;
+        if (!pair_terms(pi, pj, pj.rho, pj.sxx, pj.syy, pj.sxy, r_i, r_j, p)) continue;
+        add(s, p, pj.m, pj.vol, 1.0);
+        if (j < n) {
+          PairSum& sj = sum[j];
+          add(sj, p, pi.m, pi.vol, -1.0);
+          if (sigma_max) {
+            s.min_xx = std::min(s.min_xx, pj.sxx * pj.rho * pj.rho);
+            s.min_yy = std::min(s.min_yy, pj.syy * pj.rho * pj.rho);
+            sj.min_xx = std::min(sj.min_xx, pi.sxx * pi.rho * pi.rho);
+            sj.min_yy = std::min(sj.min_yy, pi.syy * pi.rho * pi.rho);
+          }
+        } else {
+          // reaction on the free-slip wall of the ghost
+          wall_force[work_wall[j]] -=
+              pi.m * pj.m * Vec2(p.cxx * p.gx + p.cxy * p.gy, p.cxy * p.gx + p.cyy * p.gy);
+        }
+      }
+      PairSum& sk = sum[k];
+      sk.ax += s.ax;
+      sk.ay += s.ay;
+      sk.lxx += s.lxx;
+      sk.lxy += s.lxy;
+      sk.lyx += s.lyx;
+      sk.lyy += s.lyy;
+      sk.rho_rate += s.rho_rate;
+      sk.min_xx = std::min(sk.min_xx, s.min_xx);
+      sk.min_yy = std::min(sk.min_yy, s.min_yy);
+    }
+  }
+
+  // Pass 2, per soil particle: the threads' shares summed, then the dummy particles (they need
+  // eq 31's minimum over all soil neighbours, complete only now), gravity and the load.
+  const auto n_team = static_cast<std::size_t>(team);
+#pragma omp parallel if (parallel)
   {
     Vec2* wall_force = wall_force_scratch_.data() + omp_get_thread_num() * n_walls;
 #pragma omp for schedule(dynamic, 256) reduction(max : a_max2) nowait
@@ -174,77 +288,30 @@ void SphSolver::pair_loop(const Particles& particles) {
       const PairData& pi = work[k];
       const std::size_t i = order_[k];
       const double rho_i = pi.rho;
-      const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
-      double ax = 0.0, ay = 0.0;
-      double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;  // velocity gradient
-      double rho_rate = 0.0;
-
-      // One neighbour j: m_j, rho_j, V_j = m_j / rho_j, its stress / rho_j^2 (t) and artificial
-      // stress R_j. Branch free (a neighbour in the skin, beyond 2h, has a zero kernel gradient
-      // and so adds exactly zero): mispredicted branches cost more than the arithmetic.
-      const auto interact = [&](const PairData& pj, double m_j, double rho_j, double volume_j,
-                                double txx, double tyy, double txy, const SymR& r_j, int wall) {
-        const double dx = pi.x - pj.x, dy = pi.y - pj.y;
-        const double r2 = dx * dx + dy * dy;
-        if (r2 >= support2) return;  // in the skin: not (yet) a neighbour
-        const double r = std::sqrt(r2);
-        const double f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
-        const double gx = f * dx, gy = f * dy;  // grad_i W_ij
-        const double vx = pi.vx - pj.vx, vy = pi.vy - pj.vy;
-        // Peng 2015 eqs 26-27: artificial viscosity on approaching pairs
-        const double vr = vx * dx + vy * dy;
-        double pi_ij = 0.0;
-        if (vr < 0.0) {
-          const double phi = h * vr / (r2 + eps_h2);
-          pi_ij = (-alpha_cs * phi + beta * phi * phi) * 2.0 / (rho_i + rho_j);
-        }
-        // Peng 2015 eq 30: sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij
-        double cxx = pi.sxx + txx - pi_ij, cyy = pi.syy + tyy - pi_ij, cxy = pi.sxy + txy;
-        if (b > 0.0) {
-          // Peng 2015 eq 28: S_ij = f_ij^n (R_i + R_j), f_ij = W_ij / W(dp)
-          const double fn = std::pow(kernel_.value(r) / w_dp_, exponent_n_);
-          cxx += fn * (r_i.xx + r_j.xx);
-          cyy += fn * (r_i.yy + r_j.yy);
-          cxy += fn * (r_i.xy + r_j.xy);
-        }
-        const double ax_ij = m_j * (cxx * gx + cxy * gy);
-        const double ay_ij = m_j * (cxy * gx + cyy * gy);
-        ax += ax_ij;
-        ay += ay_ij;
-        if (wall >= 0) wall_force[wall] -= pi.m * Vec2(ax_ij, ay_ij);  // reaction on the wall
-        // Peng 2015 eq 21: grad v_i = sum_j (v_j - v_i) (x) grad_i W_ij m_j / rho_j
-        lxx -= vx * gx * volume_j;
-        lxy -= vx * gy * volume_j;
-        lyx -= vy * gx * volume_j;
-        lyy -= vy * gy * volume_j;
-        // simhypo-sand eq 24: d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij
-        rho_rate += m_j * (vx * gx + vy * gy);
-      };
-
-      // Soil and ghost neighbours; on the way, Peng 2015 eq 31's smallest normal stresses
-      // among i and its soil neighbours, for the dummies below.
-      const auto late = neighbours_.late(k);
-      double min_xx = pi.sxx * rho_i * rho_i, min_yy = pi.syy * rho_i * rho_i;
-      const bool track = sigma_max && !late.empty();
-      for (const std::uint32_t j : neighbours_.early(k)) {
-        const PairData& pj = work[j];
-        if (track && j < n) {
-          const double dx = pi.x - pj.x, dy = pi.y - pj.y;
-          const double rho2 = pj.rho * pj.rho;
-          const bool near = dx * dx + dy * dy < support2;
-          min_xx = std::min(min_xx, near ? pj.sxx * rho2 : min_xx);
-          min_yy = std::min(min_yy, near ? pj.syy * rho2 : min_yy);
-        }
-        interact(pj, pj.m, pj.rho, pj.vol, pj.sxx, pj.syy, pj.sxy, b > 0.0 ? work_r[j] : r_i,
-                 j < n ? -1 : work_wall[j]);
+      PairSum s = pair_sum_[k];
+      for (std::size_t t = 1; t < n_team; ++t) {
+        const PairSum& o_t = pair_sum_[t * n + k];
+        s.ax += o_t.ax;
+        s.ay += o_t.ay;
+        s.lxx += o_t.lxx;
+        s.lxy += o_t.lxy;
+        s.lyx += o_t.lyx;
+        s.lyy += o_t.lyy;
+        s.rho_rate += o_t.rho_rate;
+        s.min_xx = std::min(s.min_xx, o_t.min_xx);
+        s.min_yy = std::min(s.min_yy, o_t.min_yy);
       }
+      const auto late = neighbours_.late(k);
       if (!late.empty()) {
         // Dummy particles: density of i, volume dp^2 of its lattice, and stress sigma_max
-        // (Peng 2015 eq 31: diagonal = the minimum above, off-diagonal = that of i) or, with
-        // Bui 2008, the stress of i.
+        // (Peng 2015 eq 31: diagonal = the smallest normal stresses among i and its soil
+        // neighbours, off-diagonal = that of i) or, with Bui 2008, the stress of i.
         const double inv_rho2 = 1.0 / (rho_i * rho_i);
+        const double min_xx = std::min(s.min_xx, pi.sxx * rho_i * rho_i);
+        const double min_yy = std::min(s.min_yy, pi.syy * rho_i * rho_i);
         const double dxx = sigma_max ? min_xx * inv_rho2 : pi.sxx;
         const double dyy = sigma_max ? min_yy * inv_rho2 : pi.syy;
+        const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
         SymR r_dummy{0.0, 0.0, 0.0};
         if (b > 0.0) {
           Mat2 s_dummy;
@@ -254,16 +321,21 @@ void SphSolver::pair_loop(const Particles& particles) {
           r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
         }
         const double m_dummy = rho_i * dummy_volume;
+        Pair p;
         for (const std::uint32_t j : late) {
-          interact(work[j], m_dummy, rho_i, dummy_volume, dxx, dyy, pi.sxy, r_dummy, work_wall[j]);
+          if (!pair_terms(pi, work[j], rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, p)) continue;
+          add(s, p, m_dummy, dummy_volume, 1.0);
+          // reaction on the wall of the dummy
+          wall_force[work_wall[j]] -=
+              pi.m * m_dummy * Vec2(p.cxx * p.gx + p.cxy * p.gy, p.cxy * p.gx + p.cyy * p.gy);
         }
       }
-      const Vec2 a = Vec2(ax, ay) + g + external_force_[i] / pi.m;  // eq 30: + g
+      const Vec2 a = Vec2(s.ax, s.ay) + g + external_force_[i] / pi.m;  // eq 30: + g
       acceleration_[i] = a;
       Mat2 l;
-      l << lxx, lxy, lyx, lyy;
+      l << s.lxx, s.lxy, s.lyx, s.lyy;
       velocity_gradient_[i] = l;
-      density_rate_[i] = rho_rate;
+      density_rate_[i] = s.rho_rate;
       const double a2 = a.squaredNorm();
       a_max2 = std::max(a_max2, std::isfinite(a2) ? a2 : std::numeric_limits<double>::infinity());
     }
@@ -292,6 +364,19 @@ double SphSolver::time_step() const {
   return setup_.options.cfl * std::min(dt_1, h_ / setup_.options.sound_speed);
 }
 
+void SphSolver::kick_drift(Particles& particles, double dt) {
+  const std::size_t n = particles.size();
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (std::size_t i = 0; i < n; ++i) {
+    // Gravity loading only: velocity damping -c v (Peng 2015 section 5.3).
+    const Vec2 a = acceleration_[i] - damping_ * particles.velocity[i];
+    particles.velocity[i] += dt * a;
+    const Vec2 dx = dt * particles.velocity[i];
+    particles.position[i] += dx;
+    particles.displacement[i] += dx;
+  }
+}
+
 void SphSolver::advance(Particles& particles, double dt) {
   const std::size_t n = particles.size();
   const bool verlet = setup_.options.integrator == SphIntegrator::verlet;
@@ -305,7 +390,7 @@ void SphSolver::advance(Particles& particles, double dt) {
   long penetrations = 0;
   const double depth = setup_.options.dummy_layers * setup_.spacing;
 
-#pragma omp parallel for schedule(static) reduction(min : bad) reduction(max : v_max2) \
+#pragma omp parallel for schedule(dynamic, 128) reduction(min : bad) reduction(max : v_max2) \
     reduction(+ : penetrations) if (n >= kParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
     const auto m = static_cast<std::size_t>(particles.material[i]);
@@ -314,11 +399,11 @@ void SphSolver::advance(Particles& particles, double dt) {
     const Mat3 l = embed(velocity_gradient_[i]);
     const Mat3 d = sym(l);   // Peng 2015 eq 22
     const Mat3 w = skew(l);  // Peng 2015 eq 23
-    // Gravity loading only: velocity damping -c v (Peng 2015 section 5.3).
-    const Vec2 a = acceleration_[i] - damping_ * particles.velocity[i];
     const Vec2* v_new = &particles.velocity[i];
     const Mat3* s_new = &particles.stress[i];
     if (verlet) {
+      // Gravity loading only: velocity damping -c v (Peng 2015 section 5.3).
+      const Vec2 a = acceleration_[i] - damping_ * particles.velocity[i];
       const Vec2 v_n = particles.velocity[i];
       const Vec2 v_base = euler ? v_n : velocity_old_[i];
       const Mat3 s_base = euler ? particles.stress[i] : stress_old_[i];
@@ -347,11 +432,8 @@ void SphSolver::advance(Particles& particles, double dt) {
       v_new = &scratch_velocity_[i];
       s_new = &scratch_stress_[i];
     } else {
-      // Leapfrog: kick, drift; stress by the incremental objective update of the library.
-      particles.velocity[i] += dt * a;
-      const Vec2 dx = dt * particles.velocity[i];
-      particles.position[i] += dx;
-      particles.displacement[i] += dx;
+      // Leapfrog, after kick_drift and velocity_gradient_pass: the stress by the incremental
+      // objective update of the library, over the velocity gradient of the new velocities.
       constitutive::update_stress(model, d * dt, w * dt, particles.stress[i], internal);
       model.correct(particles.stress[i], internal);
       particles.strain[i] += d * dt;
@@ -417,6 +499,22 @@ double SphSolver::step(Particles& particles, double time) {
     pair_loop(particles);
   }
   const double dt = time_step();
+  if (!contact_.bodies.empty()) {
+    // Frictional rigid bodies (simhypo eqs 39-40): the penalty force 2 m / dt^2 needs this
+    // step's dt, and stays out of eq 36's time step.
+    ScopedTimer t(timers_, Phase::forces);
+    const std::span<WallGeometry> bodies(geometry_.data() + setup_.walls.size(),
+                                         contact_.bodies.size());
+    move_bodies(contact_, bodies, time, counters_.steps > 0 ? previous_dt_ : 0.0, settling_);
+    apply_contact(contact_, bodies, particles, dt, acceleration_);
+  }
+  if (setup_.options.integrator == SphIntegrator::leapfrog) {
+    {
+      ScopedTimer t(timers_, Phase::integration);
+      kick_drift(particles, dt);
+    }
+    velocity_gradient_pass(particles);
+  }
   {
     ScopedTimer t(timers_, Phase::constitutive);
     advance(particles, dt);

@@ -16,6 +16,7 @@
 #include "constitutive/model.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
+#include "sph/rigid_contact.hpp"
 #include "sph/walls.hpp"
 
 namespace duet::sph {
@@ -31,6 +32,7 @@ struct SphSetup {
   Vec2 gravity = Vec2::Zero();                               // m/s^2
   std::vector<std::unique_ptr<constitutive::Model>> models;  // by material index
   std::vector<WallSpec> walls;  // walls and rigid bodies with prescribed motion
+  std::vector<FrictionalBodySpec> frictional_bodies;  // simhypo eqs 39-40 (sph/rigid_contact.hpp)
 };
 
 struct SphCounters {
@@ -69,6 +71,8 @@ class SphSolver {
   /// Force of the soil on each wall of the setup (N/m), in the order of setup.walls.
   const std::vector<Vec2>& wall_forces() const { return wall_force_; }
   const std::vector<WallSpec>& walls() const { return setup_.walls; }
+  /// Frictional rigid bodies: their reactions (force of the soil on each body, N/m) and state.
+  const RigidContact& rigid_contact() const { return contact_; }
   /// Wall time per phase: neighbours (walls, ghosts, the working-order copy, Verlet-list
   /// rebuilds), forces (pair loop), constitutive (stress update, time integration, checks).
   const Timers& timers() const { return timers_; }
@@ -103,6 +107,12 @@ class SphSolver {
   void rebuild_neighbours(const Particles& particles);
   void pair_loop(const Particles& particles);
   double time_step() const;
+  /// Leapfrog: v += dt a, x += dt v.
+  void kick_drift(Particles& particles, double dt);
+  /// Leapfrog: velocity gradient and density rate of the velocities after kick_drift
+  /// (velocity_gradient_pass.cpp).
+  void velocity_gradient_pass(const Particles& particles);
+  /// Stress (and, with Verlet, the motion) update and the checks.
   void advance(Particles& particles, double dt);
 
   SphSetup setup_;
@@ -145,9 +155,17 @@ class SphSolver {
   std::vector<double> density_rate_;
   double acceleration_max_ = 0.0;
   long penetrations_ = 0;  // soil particles behind a wall after the last update
+  // Per thread, per soil particle (working order): the pair loop's sums of eqs 21, 30 and 24
+  // and eq 31's smallest normal stresses among the soil neighbours.
+  struct PairSum {
+    double ax, ay, lxx, lxy, lyx, lyy, rho_rate, min_xx, min_yy;
+  };
+  std::vector<PairSum> pair_sum_;
   // Per thread, per wall: force of the soil on the wall.
   std::vector<Vec2> wall_force_scratch_;
   std::vector<Vec2> wall_force_;
+  // Frictional rigid bodies; their outlines follow the walls in geometry_.
+  RigidContact contact_;
 
   // Verlet history (n - 1).
   bool first_step_ = true;

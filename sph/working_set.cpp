@@ -184,11 +184,12 @@ void SphSolver::rebuild_neighbours(const Particles& particles) {
   for (std::size_t k = 0; k < n_work; ++k) all_position_[k] = Vec2(work_[k].x, work_[k].y);
   cells_.build(all_position_, cell);
   neighbours_.build(cells_, all_position_, n, cell, n + n_ghost);
+  counters_.neighbours_max = std::max(counters_.neighbours_max, neighbours_.max_count());
+  neighbours_.drop_lower_pairs(n);  // each soil pair once: the pair loop serves both ends
   work_reference_.assign(all_position_.begin(), all_position_.end());
   for (std::size_t w = 0; w < geometry_.size(); ++w) wall_reference_[w] = geometry_[w].points;
   rebuild_ = false;
   ++counters_.neighbour_builds;
-  counters_.neighbours_max = std::max(counters_.neighbours_max, neighbours_.max_count());
 }
 
 }  // namespace duet::sph

@@ -68,6 +68,36 @@ TEST(Neighbours, RowsListIndicesFromLateFromAfterAllOthers) {
   }
 }
 
+TEST(Neighbours, DroppingLowerPairsKeepsEachSoilPairOnceAndEveryBoundaryNeighbour) {
+  // Arrange: soil 0..1499, ghosts 1500..1999 (early, kept whole), dummies from 2000 (late)
+  const auto x = random_points(3000, 1.0, 0.6, 11);
+  const double radius = 0.04;
+  CellList cells;
+  NeighbourLists lists;
+  cells.build(x, radius);
+  lists.build(cells, x, 2000, radius, 2000);
+  // Act
+  lists.drop_lower_pairs(1500);
+  // Assert: row i keeps soil j > i, every ghost and every dummy; so each soil pair {i, j} sits in
+  // exactly one row, the row of its lower index.
+  for (std::size_t i = 0; i < 2000; ++i) {
+    std::vector<std::uint32_t> early(lists.early(i).begin(), lists.early(i).end());
+    std::vector<std::uint32_t> late(lists.late(i).begin(), lists.late(i).end());
+    std::sort(early.begin(), early.end());
+    std::sort(late.begin(), late.end());
+    std::vector<std::uint32_t> expected_early, expected_late;
+    for (const auto j : brute_force(x, i, radius)) {
+      if (j >= 2000) {
+        expected_late.push_back(j);
+      } else if (j >= 1500 || j > i) {
+        expected_early.push_back(j);
+      }
+    }
+    EXPECT_EQ(early, expected_early) << "particle " << i;
+    EXPECT_EQ(late, expected_late) << "particle " << i;
+  }
+}
+
 TEST(Neighbours, RowsGrowWhenAParticleHasMoreNeighboursThanTheInitialCapacity) {
   // Arrange: 400 points in a tiny cluster, so every one sees 399 neighbours
   const auto x = random_points(400, 0.001, 0.101, 3);

@@ -278,5 +278,48 @@ TEST(SphSolver, ElasticColumnSettlesToTheConstrainedCompressionSolution) {
   EXPECT_NEAR(settlement, exact, 0.1 * exact);
 }
 
+
+TEST(SphSolver, LeapfrogKeepsAnUndampedElasticVibrationBounded) {
+  // Arrange: the column above with no artificial viscosity at all. Gravity switched on at rest
+  // makes the top swing between 0 and twice the static settlement rho g H^2 / (2 M) for ever.
+  // The stress must answer the velocities that moved the particles (velocity_gradient_pass.cpp):
+  // answering the previous step's velocities grows every mode by (omega dt)^2 per step, and the
+  // shortest modes, (omega dt)^2 ~ (2 cfl)^2 = 0.04, blow up within a period.
+  const double dp = 0.005, w = 0.05, hgt = 0.1, g = 9.81;
+  Particles p = block(10, 20, dp);
+  SphSetup s = setup(dp, SphIntegrator::leapfrog);
+  s.options.alpha = 0.0;
+  s.options.beta = 0.0;
+  s.gravity = Vec2(0, -g);
+  add_box(s, w, hgt);
+  SphSolver solver(std::move(s));
+  solver.initialise(p);
+  const double c = std::sqrt(constrained_modulus() / kDensity);
+  const double period = 4.0 * hgt / c;
+  // Act: the largest top settlement in the first and in the eighth period
+  double t = 0.0, first = 0.0, last = 0.0;
+  while (t < 8.0 * period) {
+    t += solver.step(p, t);
+    double top = 0.0;
+    int n_top = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.position[i].y() - p.displacement[i].y() > hgt - dp) {
+        top -= p.displacement[i].y();
+        ++n_top;
+      }
+    }
+    top /= n_top;
+    if (t < period) first = std::max(first, top);
+    if (t > 7.0 * period) last = std::max(last, top);
+  }
+  // Assert: still swinging to about twice the static settlement, no growth
+  const double exact = kDensity * g * hgt * hgt / (2.0 * constrained_modulus());
+  std::printf("largest settlement: first period %.4e m, eighth %.4e m, static %.4e m\n", first,
+              last, exact);
+  EXPECT_NEAR(first, 2.0 * exact, 0.2 * exact);
+  EXPECT_LT(last, 1.1 * first);
+  EXPECT_GT(last, 0.8 * first);
+}
+
 }  // namespace
 }  // namespace duet::sph

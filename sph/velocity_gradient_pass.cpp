@@ -1,0 +1,117 @@
+// The leapfrog's second pair pass (sph/README.md, step 5): the velocity gradient (Peng 2015 eq 21)
+// and the density rate (simhypo-sand eq 24) of the velocity field that has just moved the
+// particles. Evaluating them with the velocities of the force pass instead (one step old) makes
+// the stress answer the motion half a step late: for an elastic oscillator that update has
+// |lambda|^2 = 1 + (omega dt)^2 per step, an energy pump that only the artificial viscosity
+// holds back, and a deposit never comes to rest. With the new velocities the kick-drift-stress
+// cycle is symplectic (|lambda| = 1).
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sph/pair_terms.hpp"
+#include "sph/sph_solver.hpp"
+
+namespace duet::sph {
+
+using detail::kParallelMin;
+
+void SphSolver::velocity_gradient_pass(const Particles& particles) {
+  {
+    ScopedTimer t(timers_, Phase::neighbours);
+    // The drift has moved everything: refresh the working copy (ghosts mirror the new state;
+    // dummies and walls keep the positions of the step's start, their velocities are the step's)
+    // and rebuild the lists if the drift took something past half the skin.
+    const double moved2 = gather(particles);
+    if (4.0 * moved2 >= skin_ * skin_) rebuild_neighbours(particles);
+  }
+  ScopedTimer t(timers_, Phase::forces);
+  const std::size_t n = particles.size();
+  const double support2 = kernel_.support_radius() * kernel_.support_radius();
+  const double tiny = std::numeric_limits<double>::min();
+  const double dummy_volume = setup_.spacing * setup_.spacing;
+  const PairData* work = work_.data();
+  const double inf = std::numeric_limits<double>::infinity();
+  const bool parallel = n >= kParallelMin;
+  int team = 1;
+
+  // Pair (i, j): grad_i W_ij (gx, gy) and v_i - v_j (vx, vy); false when j lies in the skin.
+  struct Pair {
+    double gx, gy, vx, vy;
+  };
+  const auto pair_terms = [&](const PairData& pi, const PairData& pj, Pair& p) {
+    const double dx = pi.x - pj.x, dy = pi.y - pj.y;
+    const double r2 = dx * dx + dy * dy;
+    if (r2 >= support2) return false;
+    const double r = std::sqrt(r2);
+    const double f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
+    p = {f * dx, f * dy, pi.vx - pj.vx, pi.vy - pj.vy};
+    return true;
+  };
+  // What the pair adds to one end with the other end's mass m and volume V: the same form at
+  // both ends, since v_i - v_j and grad_i W_ij both flip.
+  const auto add = [](PairSum& s, const Pair& p, double m, double volume) {
+    // Peng 2015 eq 21: grad v_i = sum_j (v_j - v_i) (x) grad_i W_ij m_j / rho_j
+    s.lxx -= p.vx * p.gx * volume;
+    s.lxy -= p.vx * p.gy * volume;
+    s.lyx -= p.vy * p.gx * volume;
+    s.lyy -= p.vy * p.gy * volume;
+    // simhypo-sand eq 24: d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij
+    s.rho_rate += m * (p.vx * p.gx + p.vy * p.gy);
+  };
+
+  // Soil pairs once each, shares scattered into the thread's own buffer (as in pair_loop);
+  // ghosts and dummies act on their row's particle only.
+#pragma omp parallel if (parallel)
+  {
+    const auto t_id = static_cast<std::size_t>(omp_get_thread_num());
+#pragma omp single nowait
+    team = omp_get_num_threads();
+    PairSum* sum = pair_sum_.data() + t_id * n;
+    std::fill(sum, sum + n, PairSum{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, inf});
+#pragma omp for schedule(dynamic, 256)
+    for (std::size_t k = 0; k < n; ++k) {
+      const PairData& pi = work[k];
+      PairSum s{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, inf};
+      Pair p;
+      for (const std::uint32_t j : neighbours_.early(k)) {
+        const PairData& pj = work[j];
+        if (!pair_terms(pi, pj, p)) continue;
+        add(s, p, pj.m, pj.vol);
+        if (j < n) add(sum[j], p, pi.m, pi.vol);
+      }
+      // Dummy particles: mass rho_i dp^2, volume dp^2, the wall's velocity.
+      for (const std::uint32_t j : neighbours_.late(k)) {
+        if (pair_terms(pi, work[j], p)) add(s, p, pi.rho * dummy_volume, dummy_volume);
+      }
+      PairSum& sk = sum[k];
+      sk.lxx += s.lxx;
+      sk.lxy += s.lxy;
+      sk.lyx += s.lyx;
+      sk.lyy += s.lyy;
+      sk.rho_rate += s.rho_rate;
+    }
+  }
+  const auto n_team = static_cast<std::size_t>(team);
+#pragma omp parallel for schedule(static) if (parallel)
+  for (std::size_t k = 0; k < n; ++k) {
+    PairSum s = pair_sum_[k];
+    for (std::size_t t_id = 1; t_id < n_team; ++t_id) {
+      const PairSum& o = pair_sum_[t_id * n + k];
+      s.lxx += o.lxx;
+      s.lxy += o.lxy;
+      s.lyx += o.lyx;
+      s.lyy += o.lyy;
+      s.rho_rate += o.rho_rate;
+    }
+    const std::size_t i = order_[k];
+    Mat2 l;
+    l << s.lxx, s.lxy, s.lyx, s.lyy;
+    velocity_gradient_[i] = l;
+    density_rate_[i] = s.rho_rate;
+  }
+}
+
+}  // namespace duet::sph
