@@ -278,7 +278,6 @@ TEST(SphSolver, ElasticColumnSettlesToTheConstrainedCompressionSolution) {
   EXPECT_NEAR(settlement, exact, 0.1 * exact);
 }
 
-
 TEST(SphSolver, LeapfrogKeepsAnUndampedElasticVibrationBounded) {
   // Arrange: the column above with no artificial viscosity at all. Gravity switched on at rest
   // makes the top swing between 0 and twice the static settlement rho g H^2 / (2 M) for ever.
