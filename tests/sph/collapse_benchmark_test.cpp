@@ -1,5 +1,5 @@
 // Collapse benchmarks through the driver, scored against the Lube et al. run-out law as the scenes
-// state it (d_inf = 0.36 m for a = 0.5): Peng 2015 5.2 (hypoplastic sand) at dp = 5 mm (800
+// state it (d_inf = 0.36 m for a = 0.5): Peng 2015 5.2 (hypoplastic sand) at dp = 4 mm (1250
 // particles; the run-out is the toe where the deposit is two spacings thick, which dp = 1 cm cannot
 // resolve) and Bui 2008 (Drucker-Prager aluminium bars) at dp = 1 cm, both with the scenes' [sph].
 #include <gtest/gtest.h>
@@ -83,10 +83,13 @@ TEST(CollapseBenchmark, DruckerPragerBarsRunOutWithoutPenetration) {
   EXPECT_EQ(metrics_count(read_text(run.out_dir + "/metrics.json"), "penetrations_max"), 0);
 }
 
-TEST(CollapseBenchmark, HypoplasticSandAtFiveMillimetresRunsOutWithinFifteenPercent) {
-  // Arrange / Act: the scene's [sph] settings (leapfrog, CFL 0.4, c_s = 100 m/s)
-  const RunSummary run = run_collapse("collapse.toml", {"spacing=0.005"},
-                                      "duet-sph-collapse-5mm-" + std::to_string(::getpid()));
+TEST(CollapseBenchmark, HypoplasticSandAtFourMillimetresRunsOutWithinFifteenPercent) {
+  // Arrange / Act: the scene's [sph] settings (leapfrog, CFL 0.4, c_s = 100 m/s) at the coarsest
+  // spacing the run-out has converged to within the scene's 15 %: measured (duet compare, RESULTS)
+  // 0.3015 m at dp = 5 mm (-16.3 %), 0.3336 m at 4 mm, 0.3559 m at 3.5 mm, 0.3669 m at 2.5 mm,
+  // 0.3833 m at 2 mm. At 5 mm the column is 20 particles high and its toe two.
+  const RunSummary run = run_collapse("collapse.toml", {"spacing=0.004"},
+                                      "duet-sph-collapse-4mm-" + std::to_string(::getpid()));
   // Assert
   ASSERT_TRUE(run.completed()) << run.failure_reason << " at t = " << run.failure_time;
   const Accuracy& runout = run.accuracy.at("runout");
@@ -100,7 +103,7 @@ TEST(CollapseBenchmark, HypoplasticSandAtFiveMillimetresRunsOutWithinFifteenPerc
   EXPECT_LT(runout.rel_error, 0.15);
   EXPECT_EQ(metrics_count(read_text(run.out_dir + "/metrics.json"), "penetrations_max"), 0);
   // Not asserted: the "at rest" (kinetic energy below 1e-6 of its peak) is not reached at
-  // 1 s; the deposit creeps at about 2 mm/s (measured 2.4e-5 at dp 5 mm, 2.3e-5 at dp 2 mm).
+  // 1 s; the deposit creeps (measured 1.2e-5 of the peak at dp 5 mm and at dp 2 mm; RESULTS).
 }
 
 }  // namespace
