@@ -188,10 +188,16 @@ struct SphOptions {
 
 enum class Remesh { every_step, angle };
 
+/// espfem critical time step: `cell-size` (papers/004 Algorithm 1 step 3, safety min_k sqrt(A_k) /
+/// c_max) or `gershgorin` (safety x 2 / omega_max with omega_max bounded from the assembled
+/// stiffness and the nodes' masses; needs moduli that bound the model's tangent).
+enum class SpfemTimeStep { cell_size, gershgorin };
+
 /// [spfem] (Zhang 2018 / Yuan 2019): alpha shape alpha = alpha_factor * dp.
 struct SpfemOptions {
   double alpha_factor = 1.5;
   double time_step_safety = 0.5;
+  SpfemTimeStep time_step = SpfemTimeStep::cell_size;
   double damping = 0.0;        // 1/s: viscous damping force -damping m v (quasi-static runs)
   double local_damping = 0.0;  // -: local non-viscous damping, -local_damping |F| sign(v) (Cundall)
   // Stabilisation of nodal integration: weight of the smoothed-strain stabilisation term

@@ -45,7 +45,8 @@ const std::vector<std::string> kSphKeys = {"kernel",      "h_over_dp",         "
                                            "wall_stress", "integrator",        "continuity"};
 const std::vector<std::string> kSpfemKeys = {"alpha_factor",  "time_step_safety", "damping",
                                              "local_damping", "stabilisation",    "remesh",
-                                             "remesh_angle",  "boundary_layer",   "implicit"};
+                                             "remesh_angle",  "boundary_layer",   "time_step",
+                                             "implicit"};
 const std::vector<std::string> kImplicitKeys = {"tolerance", "max_iterations", "load_steps",
                                                 "max_step_cuts"};
 
@@ -389,6 +390,9 @@ SpfemOptions read_spfem(SectionReader& r) {
   o.alpha_factor = r.number("alpha_factor", o.alpha_factor, positive("a multiple of dp (-)"));
   o.time_step_safety =
       r.number("time_step_safety", o.time_step_safety, positive("a safety factor (-)"));
+  o.time_step = r.choice("time_step", {"cell-size", "gershgorin"}, "cell-size") == "cell-size"
+                    ? SpfemTimeStep::cell_size
+                    : SpfemTimeStep::gershgorin;
   o.damping = r.number("damping", o.damping, non_negative("a damping coefficient (1/s)"));
   o.local_damping = r.number("local_damping", o.local_damping,
                              in_closed(0.0, 1.0, "a local damping coefficient (-)"));

@@ -2,10 +2,12 @@
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <utility>
@@ -15,18 +17,30 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, Kernel>;
-using DataStructure =
-    CGAL::Triangulation_data_structure_2<VertexBase, CGAL::Triangulation_face_base_2<Kernel>>;
+// Face info: the index of the face in AlphaMesh::triangles, -1 when it is not kept.
+using FaceBase = CGAL::Triangulation_face_base_with_info_2<std::int32_t, Kernel>;
+using DataStructure = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, DataStructure>;
 using IndexedPoint = std::pair<Kernel::Point_2, std::int32_t>;
+using VertexHandle = Delaunay::Vertex_handle;
+using FaceHandle = Delaunay::Face_handle;
 
 // Storage kept between steps so that a mesh rebuilt every step allocates nothing of ours once the
-// cloud has stopped growing (CGAL's triangulation allocates its own).
+// cloud has stopped growing. The triangulation itself is kept too: the next call moves its
+// vertices to the new positions and restores the Delaunay property by edge flips (below), which
+// costs no allocation, sort or point location.
 struct Scratch {
   std::vector<IndexedPoint> indexed_points;
   std::vector<std::int32_t> fan_offset;          // CSR rows: the triangle corners at each node
   std::vector<std::array<std::int32_t, 2>> fan;  // per corner at node a: (next, previous) node
   std::vector<std::int32_t> parent;              // union-find over nodes
+  Delaunay delaunay;                             // of the last call's points and the frame
+  std::vector<VertexHandle> vertex_of;           // per node of the last call; null: no vertex
+  bool every_node_has_a_vertex = false;
+  Vec2 inner_min = Vec2::Zero();  // the frame is at least 2 alpha away from this box
+  Vec2 inner_max = Vec2::Zero();
+  double alpha = 0.0;                             // alpha of the last call
+  std::vector<std::pair<FaceHandle, int>> edges;  // edges still to check for the Delaunay property
 };
 thread_local Scratch scratch;
 
@@ -65,31 +79,162 @@ void join(std::vector<std::int32_t>& parent, std::int32_t a, std::int32_t b) {
 
 }  // namespace
 
-void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh) {
-  // Particles at non-finite positions (a diverged run) are left out of the triangulation and come
-  // out isolated, so the failure is reported by the solver's checks rather than inside CGAL.
-  auto& indexed = scratch.indexed_points;
+namespace {
+
+// Builds the Delaunay triangulation of the finite points and of a frame of four corners (info -1)
+// around them. The frame keeps the hull of the triangulation fixed, so that moved points stay
+// inside it and only interior edges need flipping (below). Each corner lies more than 2 alpha from
+// every point of the box [inner_min, inner_max]; a face with a circumradius below alpha has its
+// circumcircle within 2 alpha of its corners, so a corner never lies in it: such a face is in
+// the triangulation with the frame exactly when it is in the one without (the empty-circle
+// property), and the kept faces are those of the plain Delaunay triangulation.
+void rebuild(const std::vector<Vec2>& points, double alpha, Scratch& s) {
+  auto& indexed = s.indexed_points;
   indexed.clear();
+  Vec2 lower = Vec2::Constant(std::numeric_limits<double>::infinity());
+  Vec2 upper = -lower;
   for (std::size_t i = 0; i < points.size(); ++i) {
+    // Particles at non-finite positions (a diverged run) are left out of the triangulation and
+    // come out isolated, so the failure is reported by the solver's checks rather than inside
+    // CGAL.
     if (points[i].allFinite()) {
       indexed.emplace_back(Kernel::Point_2(points[i].x(), points[i].y()),
                            static_cast<std::int32_t>(i));
+      lower = lower.cwiseMin(points[i]);
+      upper = upper.cwiseMax(points[i]);
     }
+  }
+  if (indexed.empty()) lower = upper = Vec2::Zero();
+  // Room for the points to move (a quarter of the extent) before the next rebuild.
+  const double room = 0.25 * (upper - lower).maxCoeff() + 2.0 * alpha;
+  s.inner_min = lower - Vec2::Constant(room);
+  s.inner_max = upper + Vec2::Constant(room);
+  const Vec2 frame_min = s.inner_min - Vec2::Constant(4.0 * alpha);
+  const Vec2 frame_max = s.inner_max + Vec2::Constant(4.0 * alpha);
+  for (const Vec2& corner : {frame_min, Vec2(frame_max.x(), frame_min.y()), frame_max,
+                             Vec2(frame_min.x(), frame_max.y())}) {
+    indexed.emplace_back(Kernel::Point_2(corner.x(), corner.y()), -1);
   }
   // Inserting a range of (point, index) pairs spatially sorts it first (Hilbert order). Of two
   // coincident particles only one gets a vertex; the other comes out isolated.
-  const Delaunay delaunay(indexed.begin(), indexed.end());
+  s.delaunay.clear();
+  s.delaunay.insert(indexed.begin(), indexed.end());
+  s.vertex_of.assign(points.size(), VertexHandle());
+  for (auto v = s.delaunay.finite_vertices_begin(); v != s.delaunay.finite_vertices_end(); ++v) {
+    if (v->info() >= 0) s.vertex_of[static_cast<std::size_t>(v->info())] = v;
+  }
+  s.every_node_has_a_vertex =
+      std::none_of(s.vertex_of.begin(), s.vertex_of.end(),
+                   [](const VertexHandle& v) { return v == VertexHandle(); });
+  s.alpha = alpha;
+}
+
+// Moves the vertices of the kept triangulation to `points` and restores the Delaunay property by
+// Lawson's edge flips: a triangulation whose every edge is locally Delaunay is the Delaunay
+// triangulation (Delaunay's lemma; Lawson 1977 flips), and with CGAL's symbolic perturbation (the
+// `true` of side_of_oriented_circle, as its own insertion uses) it is the same one a fresh build
+// gives. Valid only while the moved triangulation is still a triangulation: every face
+// counter-clockwise (checked; the frame keeps the hull convex) and every point inside the frame's
+// box. Returns false (and changes nothing the caller relies on) when a rebuild is needed.
+bool move_and_flip(const std::vector<Vec2>& points, double alpha, Scratch& s) {
+  if (!s.every_node_has_a_vertex || s.vertex_of.size() != points.size() || alpha != s.alpha) {
+    return false;
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec2& x = points[i];
+    if (!x.allFinite() || (x.array() < s.inner_min.array()).any() ||
+        (x.array() > s.inner_max.array()).any()) {
+      return false;
+    }
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    s.vertex_of[i]->set_point(Kernel::Point_2(points[i].x(), points[i].y()));
+  }
+  Delaunay& dt = s.delaunay;
+  s.edges.clear();
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    if (CGAL::orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) !=
+        CGAL::LEFT_TURN) {
+      return false;  // a face turned over or flat: not a triangulation any more
+    }
+    for (int i = 0; i < 3; ++i) {
+      const FaceHandle n = f->neighbor(i);
+      if (&*f < &*n) s.edges.emplace_back(f, i);  // each edge once
+    }
+  }
+  while (!s.edges.empty()) {
+    const auto [f, i] = s.edges.back();
+    s.edges.pop_back();
+    const FaceHandle n = f->neighbor(i);
+    if (dt.is_infinite(f) || dt.is_infinite(n)) continue;  // an edge of the frame
+    if (dt.side_of_oriented_circle(n, f->vertex(i)->point(), true) != CGAL::ON_POSITIVE_SIDE) {
+      continue;  // locally Delaunay
+    }
+    // Both faces are counter-clockwise and the edge is not locally Delaunay, so their union is a
+    // convex quadrilateral and the other diagonal can be taken.
+    dt.tds().flip(f, i);
+    for (int j = 0; j < 3; ++j) {
+      s.edges.emplace_back(f, j);
+      s.edges.emplace_back(n, j);
+    }
+  }
+  return true;
+}
+
+// label_mesh read off the triangulation: an edge of a kept face is on the surface when the face
+// across it is not kept, so no fan of corners is built. Same rules, same numbering.
+void label_from_faces(const Delaunay& delaunay, std::size_t n_nodes, AlphaMesh& mesh, Scratch& s) {
+  const auto n = static_cast<std::int32_t>(n_nodes);
+  mesh.surface.assign(n_nodes, 0);
+  mesh.component.assign(n_nodes, -1);  // -1 until the node is seen in a kept face
+  s.parent.resize(n_nodes);
+  std::iota(s.parent.begin(), s.parent.end(), 0);
+  for (auto f = delaunay.finite_faces_begin(); f != delaunay.finite_faces_end(); ++f) {
+    if (f->info() < 0) continue;
+    for (int i = 0; i < 3; ++i) {
+      const std::int32_t a = f->vertex(i)->info();
+      mesh.component[a] = 0;
+      const FaceHandle across = f->neighbor(i);
+      if (delaunay.is_infinite(across) || across->info() < 0) {
+        mesh.surface[f->vertex(Delaunay::ccw(i))->info()] = 1;
+        mesh.surface[f->vertex(Delaunay::cw(i))->info()] = 1;
+      }
+    }
+    join(s.parent, f->vertex(0)->info(), f->vertex(1)->info());
+    join(s.parent, f->vertex(1)->info(), f->vertex(2)->info());
+  }
+  mesh.n_components = 0;
+  for (std::int32_t i = 0; i < n; ++i) {
+    if (mesh.component[i] < 0) {
+      mesh.surface[i] = 1;  // isolated
+      continue;
+    }
+    const std::int32_t root = find_root(s.parent, i);
+    mesh.component[i] = root == i ? mesh.n_components++ : mesh.component[root];
+  }
+}
+
+}  // namespace
+
+void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh) {
+  Scratch& s = scratch;
+  if (!move_and_flip(points, alpha, s)) rebuild(points, alpha, s);
+  Delaunay& delaunay = s.delaunay;
 
   mesh.triangles.clear();
-  mesh.n_delaunay = delaunay.number_of_faces();
+  mesh.n_delaunay = 0;
   const double alpha_squared = alpha * alpha;
+  for (auto f = delaunay.all_faces_begin(); f != delaunay.all_faces_end(); ++f) f->info() = -1;
   for (auto f = delaunay.finite_faces_begin(); f != delaunay.finite_faces_end(); ++f) {
     const auto v0 = f->vertex(0), v1 = f->vertex(1), v2 = f->vertex(2);
+    if (v0->info() < 0 || v1->info() < 0 || v2->info() < 0) continue;  // a face on the frame
+    ++mesh.n_delaunay;
     if (below_alpha(v0->point(), v1->point(), v2->point(), alpha_squared)) {
+      f->info() = static_cast<std::int32_t>(mesh.triangles.size());
       mesh.triangles.push_back({v0->info(), v1->info(), v2->info()});  // counter-clockwise
     }
   }
-  label_mesh(points.size(), mesh);
+  label_from_faces(delaunay, points.size(), mesh, s);
 }
 
 void label_mesh(std::size_t n_nodes, AlphaMesh& mesh) {
@@ -152,7 +297,11 @@ double smallest_angle(const AlphaMesh& mesh, const std::vector<Vec2>& points) {
   // Signed interior angle at a vertex: atan2(2A, e_next . e_prev), with 2A the same for all three
   // vertices. Counter-clockwise: the smallest angle is opposite the shortest edge; clockwise
   // (inverted, 2A < 0): all angles are negative, the smallest is opposite the longest edge.
-  double smallest = 180.0;  // no triangle
+  // On a counter-clockwise triangle the angle decreases as along / 2A (its cotangent) grows, so
+  // the smallest of those takes one atan2 at the end; an inverted one is measured at once.
+  double smallest = 180.0;            // no triangle
+  double largest_cotangent = -1e300;  // over the counter-clockwise triangles
+  double best_twice_area = 0.0, best_along = 0.0;
   for (const Triangle& t : mesh.triangles) {
     const Vec2 p[3] = {points[t[0]], points[t[1]], points[t[2]]};
     const double twice_area = cross(p[1] - p[0], p[2] - p[0]);
@@ -162,7 +311,19 @@ double smallest_angle(const AlphaMesh& mesh, const std::vector<Vec2>& points) {
                                         : std::max_element(opposite, opposite + 3);
     const int k = static_cast<int>(pick - opposite);
     const double along = (p[(k + 1) % 3] - p[k]).dot(p[(k + 2) % 3] - p[k]);
-    smallest = std::min(smallest, std::atan2(twice_area, along) * 180.0 / std::numbers::pi);
+    if (twice_area > 0.0) {
+      if (along > largest_cotangent * twice_area) {
+        largest_cotangent = along / twice_area;
+        best_twice_area = twice_area;
+        best_along = along;
+      }
+    } else {
+      smallest = std::min(smallest, std::atan2(twice_area, along) * 180.0 / std::numbers::pi);
+    }
+  }
+  if (best_twice_area > 0.0) {
+    smallest =
+        std::min(smallest, std::atan2(best_twice_area, best_along) * 180.0 / std::numbers::pi);
   }
   return smallest;
 }

@@ -45,6 +45,12 @@ std::array<Vec2, 3> shape_gradients(const Vec2& x0, const Vec2& x1, const Vec2& 
           Vec2(x0.y() - x1.y(), x1.x() - x0.x()) / twice};
 }
 
+/// Bound on the norm of the in-plane tangent acting between two gradients, |lambda| + 2 G with
+/// lambda = K - 2 G / 3 (= K + 4 G / 3 for lambda >= 0): see ExplicitSolver::time_step.
+double block_modulus(const constitutive::ElasticModuli& e) {
+  return std::abs(e.bulk - 2.0 * e.shear / 3.0) + 2.0 * std::abs(e.shear);
+}
+
 }  // namespace
 
 ExplicitSolver::ExplicitSolver(EspfemSetup setup) : setup_(std::move(setup)) {
@@ -74,12 +80,14 @@ void ExplicitSolver::initialise(Particles& particles) {
   boundary_force_.assign(setup_.boundaries.size(), Vec2::Zero());
   velocity_gradient_.assign(n, Mat2::Zero());
   wave_speed_.assign(n, 0.0);
+  block_modulus_.assign(n, 0.0);
   internal_force_.assign(n, Vec2::Zero());
   stabilisation_force_.assign(n, Vec2::Zero());
   external_force_.assign(n, Vec2::Zero());
   scratch_stress_.assign(n, Mat3::Zero());
   scratch_force_.assign(n, Vec2::Zero());
   have_mesh_ = false;
+  wall_strips_ = WallStrips{};
   counters_ = EspfemCounters{};
   energy_reference_set_ = false;
   timers_.reset();
@@ -89,6 +97,7 @@ void ExplicitSolver::initialise(Particles& particles) {
     const constitutive::ElasticModuli e = setup_.models[m]->moduli(
         particles.stress[i], std::span<const double>(particles.internal.of(i), n_internal_[m]));
     wave_speed_[i] = std::sqrt(std::max(e.bulk + 4.0 * e.shear / 3.0, 0.0) / particles.density[i]);
+    block_modulus_[i] = block_modulus(e);
   }
 }
 
@@ -139,20 +148,79 @@ void ExplicitSolver::update_mesh(const Particles& particles) {
   // gives the surface cells the skin the mesh misses, so stiffness and the nodes' (particle) mass
   // agree.
   const double layer = o.boundary_layer ? 0.5 * setup_.spacing : 0.0;
+  // No-slip walls as wall strips (with the layer): the edges at a wall own the strip to it.
+  const WallStrips* strips = nullptr;
+  if (layer > 0.0) {
+    find_wall_strips(mesh_, x, setup_.boundaries, geometry_, setup_.spacing, layer, wall_strips_);
+    strips = &wall_strips_;
+  }
   if (remesh) {
-    build_smoothing_cells(mesh_, x, cells_, layer);
+    build_smoothing_cells(mesh_, x, cells_, layer, strips);
   } else {
-    refill_smoothing_cells(mesh_, x, cells_, layer);  // same triangles: keep the row structure
+    refill_smoothing_cells(mesh_, x, cells_, layer, strips);  // same triangles: same rows
   }
   if (remesh && !mesh_.triangles.empty()) angle = smallest_angle(mesh_, x);
   counters_.smallest_angle = std::min(counters_.smallest_angle, angle);
 }
 
-double ExplicitSolver::time_step() const {
+double ExplicitSolver::time_step(const Particles& particles) {
+  if (setup_.options.time_step == SpfemTimeStep::cell_size) return cell_size_time_step();
+  // `gershgorin`. Central
+  // difference is stable for dt <= 2 / omega_max (undamped), with omega_max^2 the largest
+  // eigenvalue of M^-1 K, K = sum_k A_k B_k^T D_k B_k the smoothed stiffness and M the lumped
+  // (particle) masses. Its 2x2 block (l, m) is sum_k A_k [lambda b_kl b_km^T + G (b_kl . b_km) I
+  // + G b_km b_kl^T], of norm <= sum_k A_k (|lambda| + 2 G)_k |b_kl| |b_km|, so the block
+  // Gershgorin theorem (Feingold & Varga 1962) bounds, with no eigen-solve,
+  //   omega_max^2 <= max_l (1 / m_l) sum_k A_k M_k |b_kl| sum_m |b_km|,  M_k = |lambda| + 2 G
+  // (= K + 4G/3 for lambda >= 0). It follows the node's true mass and the stiffness its cells
+  // carry: a surface node held by an alpha-shape sliver has a tiny cell A_k but the full particle
+  // mass, and sqrt(A_k) / c (the former l_min / c) cut dt by the ratio of the two. Two O(nnz)
+  // passes, no allocation once sized: w_k = A_k M_k sum_m |b_km| per cell, then each row l
+  // gathers w_k |b_kl| through the transpose map.
+  const std::size_t n = cells_.area.size();
+  cell_weight_.resize(n);
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::size_t k = 0; k < n; ++k) {
+    double row_sum = 0.0;
+    for (std::int32_t e = cells_.offset[k]; e < cells_.offset[k + 1]; ++e) {
+      row_sum += cells_.gradient[static_cast<std::size_t>(e)].norm();
+    }
+    cell_weight_[k] = cells_.area[k] * block_modulus_[k] * row_sum;
+  }
+  double omega_squared = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : omega_squared) if (n > kParallelMin)
+  for (std::size_t l = 0; l < n; ++l) {
+    double bound = 0.0;
+    // Row l lists every k whose cell sees node l; b_kl is entry (k, l), read through transpose.
+    for (std::int32_t e = cells_.offset[l]; e < cells_.offset[l + 1]; ++e) {
+      const auto k = static_cast<std::size_t>(cells_.column[static_cast<std::size_t>(e)]);
+      const auto kl = static_cast<std::size_t>(cells_.transpose[static_cast<std::size_t>(e)]);
+      bound += cell_weight_[k] * cells_.gradient[kl].norm();
+    }
+    omega_squared = std::max(omega_squared, std::abs(bound) / particles.mass[l]);
+  }
+  if (!(omega_squared > 0.0)) {
+    // No mesh (every node isolated): the former estimate with l = dp.
+    double c_max = 0.0;
+    for (const double c : wave_speed_) c_max = std::max(c_max, c);
+    if (!(c_max > 0.0)) {
+      throw NumericalFailure("espfem: no positive wave speed (every node has zero stiffness)");
+    }
+    return setup_.options.time_step_safety * setup_.spacing / c_max;
+  }
+  // dt = safety x the central-difference limit 2 / omega_max (safety 1: stable for linear
+  // elasticity without damping, guaranteed by the bound)
+  return setup_.options.time_step_safety * 2.0 / std::sqrt(omega_squared);
+}
+
+double ExplicitSolver::cell_size_time_step() const {
   // papers/004 Algorithm 1 step 3 computes dt from the node volumes: l_min is the smallest
-  // smoothing-cell size sqrt(A_k) over the nodes in the mesh. (The smallest triangle altitude fell
-  // 100x on thin alpha-shape surface triangles, which a node's cell shares with its neighbours;
-  // a node held by slivers alone still has a tiny cell and still cuts dt.)
+  // smoothing-cell size sqrt(A_k) over the nodes in the mesh, c_max the largest wave speed
+  // sqrt((K + 4G/3) / rho) over all nodes. (The smallest triangle altitude fell 100x on thin
+  // alpha-shape surface triangles, which a node's cell shares with its neighbours; a node held by
+  // slivers alone still has a tiny cell and still cuts dt: `gershgorin` does not.) Global minimum
+  // against global maximum: conservative where moduli() only estimates a model's tangent
+  // (hypoplastic), which `gershgorin` trusts node by node.
   const std::size_t n = cells_.area.size();
   double smallest_area = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(min : smallest_area) if (n > kParallelMin)
@@ -192,6 +260,7 @@ void ExplicitSolver::update_stress(Particles& particles, double dt) {
     const constitutive::ElasticModuli e = model.moduli(particles.stress[i], internal);
     // P-wave speed c = sqrt((K + 4 G / 3) / rho)
     wave_speed_[i] = std::sqrt(std::max(e.bulk + 4.0 * e.shear / 3.0, 0.0) / particles.density[i]);
+    block_modulus_[i] = block_modulus(e);
   }
 }
 
@@ -307,6 +376,7 @@ void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
       }
       for (const NodeContact& c : found) {
         const NodeBoundary& b = setup_.boundaries[static_cast<std::size_t>(c.boundary)];
+        if (held_by_wall_strip(wall_strips_, c)) continue;  // its wall strip carries it
         const Vec2 dv = constrain_velocity(c, b.condition, b.friction, v_new);
         // Force of the soil on the boundary: m (a_free - a_constrained)
         my_impulse[c.boundary] -= m * dv / dt;
@@ -329,6 +399,8 @@ void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
       f += impulse[static_cast<std::size_t>(t) * n_boundaries + b];
     boundary_force_[b] = f;
   }
+  // Wall strips: the soil pushes each wall point with -F_w (force of the soil on the wall)
+  add_wall_strip_reactions(wall_strips_, cells_, particles.stress, boundary_force_);
   counters_.contacts_max = std::max(counters_.contacts_max, n_contacts);
 }
 
@@ -348,12 +420,20 @@ double ExplicitSolver::energy(const Particles& particles) const {
 double ExplicitSolver::step(Particles& particles, double time) {
   {
     ScopedTimer t(timers_, Phase::mesh);
+    // The walls at t, for the wall strips of this step (integrate() reads the same geometry)
+    for (std::size_t b = 0; b < setup_.boundaries.size(); ++b) {
+      update_geometry(setup_.boundaries[b], std::max(time, 0.0), geometry_[b]);
+      if (settling_) {
+        std::fill(geometry_[b].point_velocity.begin(), geometry_[b].point_velocity.end(),
+                  Vec2::Zero());
+      }
+    }
     update_mesh(particles);
   }
   double dt = 0.0;
   {
     ScopedTimer t(timers_, Phase::constitutive);
-    dt = time_step();
+    dt = time_step(particles);
     update_stress(particles, dt);
   }
   {
@@ -419,6 +499,7 @@ Json ExplicitSolver::diagnostics() const {
   j["dt_max"] = c.dt_max;
   j["smallest_angle"] = c.smallest_angle;
   j["contacts_max"] = c.contacts_max;
+  j["wall_strip_edges"] = static_cast<long>(wall_strips_.edges.size());
   j["stabilisation"] = setup_.options.stabilisation;
   j["energy_reference"] = c.energy_reference;
   j["energy_drift_max"] = c.energy_drift_max;

@@ -1,7 +1,7 @@
 #pragma once
 // The explicit SPFEM step (papers/004, "Computational cycle of eSPFEM", Algorithm 1; Yuan et al.
 // 2019): (re)mesh the nodes (Delaunay + alpha shape), build the node-based smoothing cells,
-// critical time step dt = alpha l_min / c (step 3), smoothed velocity gradients (step 4), stress
+// critical time step (Gershgorin bound, step 3), smoothed velocity gradients (step 4), stress
 // update through the shared constitutive library (step 5), internal forces (step 6), M a = F_ext -
 // F_int and the central-difference update of velocities then positions (step 7). Nodes are the
 // particles: stress and internal variables live on them. This class knows nothing of the scene
@@ -21,6 +21,7 @@
 #include "spfem/alpha_mesh.hpp"
 #include "spfem/node_contact.hpp"
 #include "spfem/smoothing.hpp"
+#include "spfem/wall_strip.hpp"
 
 namespace duet::spfem {
 
@@ -84,7 +85,8 @@ class ExplicitSolver {
 
  private:
   void update_mesh(const Particles& particles);
-  double time_step() const;
+  double time_step(const Particles& particles);
+  double cell_size_time_step() const;
   void update_stress(Particles& particles, double dt);
   void assemble_forces(const Particles& particles);
   void add_stabilisation(const Particles& particles);
@@ -101,7 +103,9 @@ class ExplicitSolver {
   std::vector<std::int32_t> node_triangle_;
 
   std::vector<Mat2> velocity_gradient_;
-  std::vector<double> wave_speed_;  // per node, m/s
+  std::vector<double> wave_speed_;     // per node, m/s
+  std::vector<double> block_modulus_;  // per node: |lambda| + 2 G (Pa), for the time step
+  std::vector<double> cell_weight_;    // per cell: A_k M_k sum_m |b_km|, time-step scratch
   std::vector<Vec2> internal_force_;
   std::vector<Vec2> stabilisation_force_;
   std::vector<Vec2> external_force_;
@@ -113,6 +117,7 @@ class ExplicitSolver {
 
   std::vector<BoundaryGeometry> geometry_;
   std::vector<NodeContact> contacts_;
+  WallStrips wall_strips_;  // no-slip walls as strips of the smoothing (spfem/wall_strip.hpp)
   std::vector<Vec2> boundary_force_;
 
   double damping_ = 0.0;  // 1/s, only while settling

@@ -101,7 +101,7 @@ void find_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32
     if (std::abs(d) <= reach) projects_on_any = true;
     if (d > reach || d < -depth) continue;
     const Vec2 v = (1.0 - u) * geometry.point_velocity[s] + u * geometry.point_velocity[s + 1];
-    out.push_back({node, boundary, geometry.normals[s], d, v});
+    out.push_back({node, boundary, geometry.normals[s], d, v, a + u * ab});
   }
   if (!rigid_body || projects_on_any) return;
   // A convex corner of a rigid body: the node lies in the fan between two segment normals.
@@ -109,8 +109,26 @@ void find_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32
     const Vec2 r = x - geometry.points[k];
     const double d = r.norm();
     if (d > reach || d <= 0.0) continue;
-    out.push_back({node, boundary, r / d, d, geometry.point_velocity[k]});
+    out.push_back({node, boundary, r / d, d, geometry.point_velocity[k], geometry.points[k]});
   }
+}
+
+bool project_on_boundary(const BoundaryGeometry& geometry, std::int32_t node, std::int32_t boundary,
+                         const Vec2& x, double depth, double max_distance, NodeContact& out) {
+  bool found = false;
+  for (std::size_t s = 0; s + 1 < geometry.points.size(); ++s) {
+    const Vec2 a = geometry.points[s];
+    const Vec2 ab = geometry.points[s + 1] - a;
+    const double u = (x - a).dot(ab) / ab.squaredNorm();
+    if (u < 0.0 || u > 1.0) continue;
+    const double d = (x - a).dot(geometry.normals[s]);
+    if (d > max_distance || d < -depth) continue;
+    if (found && std::abs(d) >= std::abs(out.distance)) continue;
+    const Vec2 v = (1.0 - u) * geometry.point_velocity[s] + u * geometry.point_velocity[s + 1];
+    out = {node, boundary, geometry.normals[s], d, v, a + u * ab};
+    found = true;
+  }
+  return found;
 }
 
 Vec2 constrain_velocity(const NodeContact& contact, NodeCondition condition, double friction,

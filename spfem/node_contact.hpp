@@ -63,6 +63,7 @@ struct NodeContact {
   Vec2 normal = Vec2::Zero();
   double distance = 0.0;
   Vec2 boundary_velocity = Vec2::Zero();
+  Vec2 point = Vec2::Zero();  // the contact point on the boundary (foot of the projection)
 };
 
 /// Contacts of `x` with the boundary: every segment it projects onto within [-depth, reach] of
@@ -71,6 +72,12 @@ struct NodeContact {
 void find_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32_t node,
                    std::int32_t boundary, const Vec2& x, double reach, double depth,
                    std::vector<NodeContact>& out);
+
+/// The segment of the boundary that `x` projects onto nearest to it on the soil side, with the
+/// signed distance in [-depth, max_distance]; false when there is none. (Wall strips: where an
+/// attached node sits against its wall.)
+bool project_on_boundary(const BoundaryGeometry& geometry, std::int32_t node, std::int32_t boundary,
+                         const Vec2& x, double depth, double max_distance, NodeContact& out);
 
 /// Applies one contact to the node's velocity after the free update, `velocity` (in and out),
 /// following the condition; returns the velocity change it made (the impulse per unit mass).

@@ -158,8 +158,10 @@ void add_to_row(const Triangle& t, const TriangleTerms& terms, double factor, In
 // right-angled corner), is spread the same way. Every term is an exact element gradient times a
 // weight, so a linear velocity is still reproduced exactly (patch test) and
 // F_int = sum_k A_k B_k^T sigma_k keeps its virtual power.
+// A wall edge (spfem/wall_strip.hpp) owns a wall strip instead of its layer strip.
 void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& points,
-              std::size_t k, double layer_depth, bool on_surface, SmoothingCells& cells) {
+              std::size_t k, double layer_depth, bool on_surface, const WallStrips* walls,
+              SmoothingCells& cells) {
   const Index row_begin = cells.offset[k];
   Index row_end = row_begin;
   if (cells.offset[k + 1] > row_begin) {  // a node in no triangle has an empty row
@@ -176,6 +178,8 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   Vec2 outgoing = Vec2::Zero();
   int n_incoming = 0;
   int n_outgoing = 0;
+  int n_walled = 0;         // surface edges at k that own a wall strip
+  double wall_wedge = 0.0;  // wedge carried by the wall strips at k
   for (Index i = cells.triangle_offset[k]; i < cells.triangle_offset[k + 1]; ++i) {
     const Triangle& t = triangles[cells.node_triangles[i]];
     const TriangleTerms terms = triangle_terms(t, points);
@@ -194,7 +198,10 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
         if (!is_surface_edge(cells, triangles, k, m)) continue;
         const Vec2 edge = m == next ? points[next] - points[k] : points[k] - points[previous];
         const double length = edge.norm();
-        const double strip = 0.5 * length * depth;  // this node's half of the strip
+        const bool walled = walls != nullptr && (m == next ? is_wall_edge(*walls, k, Index(k), m)
+                                                           : is_wall_edge(*walls, k, m, Index(k)));
+        if (walled) ++n_walled;
+        const double strip = walled ? 0.0 : 0.5 * length * depth;  // this node's half
         area += strip;
         if (well_shaped) {
           factor += strip / (terms.area / 3.0);  // strip x grad N^e
@@ -215,8 +222,12 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   if (n_incoming == 1 && n_outgoing == 1) {
     const double turn = std::atan2(cross(incoming, outgoing), incoming.dot(outgoing));
     const double wedge = depth * depth * std::clamp(std::tan(0.5 * turn), -1.0, 1.0);
-    area += wedge;
-    spread += wedge;
+    if (n_walled > 0) {
+      wall_wedge = wedge;  // the corner against the wall: the wall strip's gradient
+    } else {
+      area += wedge;
+      spread += wedge;
+    }
   }
   if (spread != 0.0 && well_area > 0.0) {
     // spread x the gradient smoothed over the well-shaped triangles:
@@ -232,19 +243,25 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
     area -= spread;  // no well-shaped triangle to carry it: the node gets no layer there
   }
   area += plain_area;
+  if (walls != nullptr) {
+    area += add_wall_strip_terms(*walls, points, k, row_begin, row_end, wall_wedge, cells);
+  }
   assert(row_end == cells.offset[k + 1]);
   assert((row_end == row_begin || area > 0.0) && "a smoothing-cell area is not positive");
   cells.area[k] = area;
   if (area != 0.0) {  // signed areas: an inverted triangle still counts consistently
     // papers/004 "Strain smoothing technique": b_lh(x_k) = (1/A^(k)) sum_j (1/3) A_e^j N_l,h^j
     for (Index entry = row_begin; entry < row_end; ++entry) cells.gradient[entry] /= area;
+    for (Index entry = cells.wall_offset[k]; entry < cells.wall_offset[k + 1]; ++entry) {
+      cells.wall_gradient[entry] /= area;
+    }
   }
 }
 
 }  // namespace
 
 void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
-                           SmoothingCells& cells, double layer_depth) {
+                           SmoothingCells& cells, double layer_depth, const WallStrips* walls) {
   const std::size_t n_nodes = points.size();
   const std::vector<Triangle>& triangles = mesh.triangles;
   build_adjacency(triangles, n_nodes, cells);
@@ -264,7 +281,7 @@ void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& point
   cells.column.resize(n_entries);
   cells.gradient.resize(n_entries);
   cells.transpose.resize(n_entries);
-  refill_smoothing_cells(mesh, points, cells, layer_depth);
+  refill_smoothing_cells(mesh, points, cells, layer_depth, walls);
 
   // Transpose: the row of the smaller node of each pair {k, l} finds (l, k) in row l (rows are
   // short, about seven entries) and sets both slots; every slot has exactly one writer.
@@ -293,6 +310,13 @@ void smoothed_velocity_gradients(const SmoothingCells& cells, const std::vector<
       // L_k(i, j) = sum_l v_l,i b_kl,j (papers/004 smoothed B applied to the nodal velocities)
       l_k.noalias() += velocity[cells.column[entry]] * cells.gradient[entry].transpose();
     }
+    if (!cells.wall_offset.empty()) {
+      for (Index entry = cells.wall_offset[k]; entry < cells.wall_offset[k + 1]; ++entry) {
+        // + sum_w v_w c_kw: the wall strip's vertices move with their wall
+        l_k.noalias() +=
+            cells.wall_velocity[cells.wall_column[entry]] * cells.wall_gradient[entry].transpose();
+      }
+    }
     gradient[k] = l_k;
   }
 }
@@ -316,7 +340,7 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
 }
 
 void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
-                            SmoothingCells& cells, double layer_depth) {
+                            SmoothingCells& cells, double layer_depth, const WallStrips* walls) {
   // Fill pass: each row written by one thread only; the rows come out in the same order for the
   // same triangles, so offsets and the transpose map stay valid. Only a surface node (flagged by
   // the alpha mesh; every node when the flags are absent, e.g. a mesh built by hand) can own a
@@ -324,10 +348,14 @@ void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& poin
   const std::size_t n_nodes = points.size();
   const bool know_surface = mesh.surface.size() == n_nodes;
   const std::ptrdiff_t n = std::ptrdiff_t(n_nodes);
+  const WallStrips* strips = layer_depth > 0.0 && walls != nullptr && !walls->edges.empty()
+                                 ? walls
+                                 : nullptr;  // wall strips replace layer strips only
+  size_wall_entries(strips, n_nodes, cells);
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     fill_row(mesh.triangles, points, std::size_t(k), layer_depth,
-             !know_surface || mesh.surface[std::size_t(k)] != 0, cells);
+             !know_surface || mesh.surface[std::size_t(k)] != 0, strips, cells);
   }
 }
 

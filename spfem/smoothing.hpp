@@ -11,6 +11,7 @@
 
 #include "common/tensor.hpp"
 #include "spfem/alpha_mesh.hpp"
+#include "spfem/wall_strip.hpp"
 
 namespace duet::spfem {
 
@@ -22,6 +23,12 @@ struct SmoothingCells {
   std::vector<std::int32_t> column;     // node l of each entry
   std::vector<Vec2> gradient;           // b_kl (1/m)
   std::vector<std::int32_t> transpose;  // for entry (k, l): the index of entry (l, k)
+  // Wall strips (spfem/wall_strip.hpp): row k also holds c_kw for wall points w, which move with
+  // their wall: L_k = sum_l v_l (x) b_kl + sum_w v_w (x) c_kw. Empty rows without strips.
+  std::vector<std::int32_t> wall_offset;  // n_nodes + 1 row starts (empty: no wall terms)
+  std::vector<std::int32_t> wall_column;  // wall point w of each entry
+  std::vector<Vec2> wall_gradient;        // c_kw (1/m)
+  std::vector<Vec2> wall_velocity;        // v_w (m/s) per wall point, copied from the strips
   // Node -> triangles adjacency (CSR), built first and kept so its storage is reused each step.
   std::vector<std::int32_t> triangle_offset;  // n_nodes + 1 starts into node_triangles
   std::vector<std::int32_t> node_triangles;   // indices into mesh.triangles around each node
@@ -36,15 +43,21 @@ struct SmoothingCells {
 /// them lies dp/2 inside the material on every face: depth dp/2 gives the cells of a lattice
 /// rectangle exactly the body's area while the nodes carry the full particle mass. 0 = the
 /// slides' plain cells.
+/// `walls` (with layer_depth > 0): the surface edges in `walls->edges` own a wall strip instead
+/// of their layer strip.
 void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
-                           SmoothingCells& cells, double layer_depth = 0.0);
+                           SmoothingCells& cells, double layer_depth = 0.0,
+                           const WallStrips* walls = nullptr);
 
 /// Recomputes areas and gradients of cells built by build_smoothing_cells from this same `mesh`
 /// (same triangles) at new `points`: the row structure and the transpose map are kept.
+/// The wall strips may differ from the build's (they only add to rows that hold their nodes).
 void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
-                            SmoothingCells& cells, double layer_depth = 0.0);
+                            SmoothingCells& cells, double layer_depth = 0.0,
+                            const WallStrips* walls = nullptr);
 
-/// L_k(i, j) = dv_i/dx_j = sum_l v_l,i b_kl,j at every node (zero for a node in no triangle).
+/// L_k(i, j) = dv_i/dx_j = sum_l v_l,i b_kl,j (+ sum_w v_w,i c_kw,j: wall strips) at every node
+/// (zero for a node in no triangle).
 void smoothed_velocity_gradients(const SmoothingCells& cells, const std::vector<Vec2>& velocity,
                                  std::vector<Mat2>& gradient);
 

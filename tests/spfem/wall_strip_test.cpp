@@ -1,0 +1,270 @@
+// Tests of the wall strips (spfem/wall_strip.hpp): no-slip walls enter the node-based smoothing as
+// strips between the surface edges at the wall and the wall, whose wall vertices move with it.
+// Checked: which edges get a strip, the linear patch test with walls moving with the field, the
+// cell areas (the body's true area), virtual power with the wall points, the balance of the nodal
+// and wall-point forces, and the release rule (a strip holds in tension).
+#include "spfem/wall_strip.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "spfem/smoothing.hpp"
+#include "tests/spfem/delaunay_mesh.hpp"
+
+namespace duet::spfem {
+namespace {
+
+using testing::delaunay_mesh;
+
+// The particles of a W x H rectangle sampled cell-centred, (i + 1/2) dp, lower left corner at the
+// origin: the floor y = 0 and the left wall x = 0 lie dp/2 off the first row and column.
+struct Lattice {
+  double dp = 0.05;
+  int nx = 24;
+  int ny = 8;
+  double width() const { return nx * dp; }
+  double height() const { return ny * dp; }
+  std::vector<Vec2> points() const {
+    std::vector<Vec2> x;
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) x.emplace_back((i + 0.5) * dp, (j + 0.5) * dp);
+    }
+    return x;
+  }
+};
+
+// Jittered by up to 0.2 dp; the first row and column bowed towards their walls instead (convex,
+// so every edge of theirs stays on the surface): between 0.3 dp (middle) and 0.5 dp (ends) off
+// them, tilted strips of uneven depth.
+std::vector<Vec2> jittered(const Lattice& lattice, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  std::vector<Vec2> x = lattice.points();
+  const Vec2 centre(0.5 * lattice.width(), 0.5 * lattice.height());
+  const auto bowed = [&](double along, double half) {
+    const double s = (along - half) / half;
+    return lattice.dp * (0.3 + 0.2 * s * s);
+  };
+  for (Vec2& p : x) {
+    const bool first_column = p.x() < lattice.dp;
+    const bool first_row = p.y() < lattice.dp;
+    const Vec2 shift = lattice.dp * Vec2(u(random), u(random));
+    if (!first_column && !first_row) p += shift;
+    if (first_column) p.x() = bowed(p.y(), centre.y());
+    if (first_row) p.y() = bowed(p.x(), centre.x());
+  }
+  return x;
+}
+
+NodeBoundary wall(const char* name, const Vec2& a, const Vec2& b, NodeCondition condition) {
+  NodeBoundary w;
+  w.name = name;
+  w.polyline = {a, b};
+  w.condition = condition;
+  return w;
+}
+
+// A no-slip floor and left wall around the lattice (reaching past its corners).
+std::vector<NodeBoundary> floor_and_left_wall(const Lattice& lattice,
+                                              NodeCondition left = NodeCondition::bonded) {
+  return {wall("floor", Vec2(-lattice.dp, 0.0), Vec2(lattice.width() + lattice.dp, 0.0),
+               NodeCondition::bonded),
+          wall("left", Vec2(0.0, -lattice.dp), Vec2(0.0, lattice.height() + lattice.dp), left)};
+}
+
+WallStrips strips_of(const AlphaMesh& mesh, const std::vector<Vec2>& x,
+                     const std::vector<NodeBoundary>& boundaries, double dp) {
+  std::vector<BoundaryGeometry> geometry;
+  for (const NodeBoundary& b : boundaries) geometry.push_back(orient_boundary(b, x, 2.0 * dp));
+  WallStrips strips;
+  find_wall_strips(mesh, x, boundaries, geometry, dp, 0.5 * dp, strips);
+  return strips;
+}
+
+const Mat2 kGeneralGradient = (Mat2() << 0.7, -1.3, 0.45, -0.2).finished();
+
+TEST(WallStrip, EveryEdgeAlongANoSlipWallGetsAStripAndAFreeSlipWallNone) {
+  // Arrange: lattice on a no-slip floor beside a free-slip left wall
+  const Lattice lattice;
+  const std::vector<Vec2> x = lattice.points();
+  const AlphaMesh mesh = delaunay_mesh(x);
+  // Act
+  const WallStrips strips =
+      strips_of(mesh, x, floor_and_left_wall(lattice, NodeCondition::smooth), lattice.dp);
+  // Assert: the nx - 1 bottom edges, each a -> b left to right (soil on its left), projected on
+  // y = 0 straight below its nodes
+  ASSERT_EQ(strips.edges.size(), std::size_t(lattice.nx - 1));
+  for (const WallEdge& e : strips.edges) {
+    EXPECT_EQ(e.boundary, 0);
+    EXPECT_GT(x[std::size_t(e.b)].x(), x[std::size_t(e.a)].x());
+    EXPECT_NEAR((e.a_wall - Vec2(x[std::size_t(e.a)].x(), 0.0)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((e.b_wall - Vec2(x[std::size_t(e.b)].x(), 0.0)).norm(), 0.0, 1e-15);
+  }
+}
+
+TEST(WallStrip, LinearVelocityStaysExactWithTheWallsMovingWithTheField) {
+  // Arrange: irregular mesh on a no-slip floor and left wall, v = v0 + G (x - x_c), and the wall
+  // points moving with the same field, v_w = v(x_w)
+  const Lattice lattice;
+  const std::vector<Vec2> x = jittered(lattice, 7);
+  const AlphaMesh mesh = delaunay_mesh(x);
+  WallStrips strips = strips_of(mesh, x, floor_and_left_wall(lattice), lattice.dp);
+  const Vec2 centre(0.5 * lattice.width(), 0.5 * lattice.height());
+  const auto field = [&](const Vec2& p) {
+    return Vec2(Vec2(0.03, -0.08) + kGeneralGradient * (p - centre));
+  };
+  for (WallEdge& e : strips.edges) {
+    e.a_wall_velocity = field(e.a_wall);
+    e.b_wall_velocity = field(e.b_wall);
+  }
+  std::vector<Vec2> v(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) v[i] = field(x[i]);
+  SmoothingCells cells;
+  build_smoothing_cells(mesh, x, cells, 0.5 * lattice.dp, &strips);
+  // Act
+  std::vector<Mat2> l;
+  smoothed_velocity_gradients(cells, v, l);
+  // Assert: every cell, wall strips included, integrates exact element gradients
+  double worst = 0.0;
+  for (const Mat2& l_k : l) {
+    worst = std::max(worst, (l_k - kGeneralGradient).norm() / kGeneralGradient.norm());
+  }
+  std::printf("patch test with %zu wall strips: relative error %.2e\n", strips.edges.size(), worst);
+  EXPECT_EQ(strips.edges.size(), std::size_t(lattice.nx - 1 + lattice.ny - 1));
+  EXPECT_LT(worst, 1e-12);
+}
+
+TEST(WallStrip, CellAreasSumToTheBodyAreaAgainstTwoNoSlipWalls) {
+  // Arrange: the mesh covers (W - dp)(H - dp); strips (wall or layer) dp/2 deep along all four
+  // sides and the four corner wedges (dp/2)^2, the one between the walls carried by its strips
+  const Lattice lattice;
+  const std::vector<Vec2> x = lattice.points();
+  const AlphaMesh mesh = delaunay_mesh(x);
+  const WallStrips strips = strips_of(mesh, x, floor_and_left_wall(lattice), lattice.dp);
+  SmoothingCells cells;
+  // Act
+  build_smoothing_cells(mesh, x, cells, 0.5 * lattice.dp, &strips);
+  // Assert: sum A_k = W H
+  double sum = 0.0;
+  for (const double a_k : cells.area) sum += a_k;
+  const double body = lattice.width() * lattice.height();
+  std::printf("%zu strips, cell areas %.12f, W H = %.12f\n", strips.edges.size(), sum, body);
+  EXPECT_EQ(strips.edges.size(), std::size_t(lattice.nx - 1 + lattice.ny - 1));
+  EXPECT_NEAR(sum, body, 1e-12 * body);
+}
+
+struct RandomState {
+  std::vector<Vec2> velocity;
+  std::vector<Mat3> stress;
+};
+
+RandomState random_state(std::size_t n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  RandomState s{std::vector<Vec2>(n), std::vector<Mat3>(n, Mat3::Zero())};
+  for (std::size_t k = 0; k < n; ++k) {
+    s.velocity[k] = Vec2(u(random), u(random));
+    s.stress[k](0, 0) = 1.0e5 * u(random);
+    s.stress[k](1, 1) = 1.0e5 * u(random);
+    s.stress[k](0, 1) = s.stress[k](1, 0) = 1.0e5 * u(random);
+  }
+  return s;
+}
+
+TEST(WallStrip, InternalPowerWithTheWallPointsEqualsStressPower) {
+  // Arrange: arbitrary node and wall-point velocities and node stresses on an irregular mesh
+  const Lattice lattice;
+  const std::vector<Vec2> x = jittered(lattice, 9);
+  const AlphaMesh mesh = delaunay_mesh(x);
+  WallStrips strips = strips_of(mesh, x, floor_and_left_wall(lattice), lattice.dp);
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (WallEdge& e : strips.edges) {
+    e.a_wall_velocity = Vec2(u(random), u(random));
+    e.b_wall_velocity = Vec2(u(random), u(random));
+  }
+  SmoothingCells cells;
+  build_smoothing_cells(mesh, x, cells, 0.5 * lattice.dp, &strips);
+  const RandomState s = random_state(x.size(), 10);
+  // Act
+  std::vector<Vec2> force;
+  internal_forces(cells, s.stress, force);
+  std::vector<Vec2> wall_force;
+  wall_point_forces(cells, s.stress, wall_force);
+  std::vector<Mat2> l;
+  smoothed_velocity_gradients(cells, s.velocity, l);
+  // Assert: sum_l F_l . v_l + sum_w F_w . v_w == sum_k A_k sigma_k : L_k
+  double internal_power = 0.0;
+  for (std::size_t k = 0; k < x.size(); ++k) internal_power += force[k].dot(s.velocity[k]);
+  for (std::size_t w = 0; w < wall_force.size(); ++w) {
+    internal_power += wall_force[w].dot(cells.wall_velocity[w]);
+  }
+  double stress_power = 0.0;
+  double scale = 0.0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const Mat2 sk = s.stress[k].topLeftCorner<2, 2>();
+    stress_power += cells.area[k] * (sk.array() * l[k].array()).sum();
+    scale += cells.area[k] * (sk.array() * l[k].array()).abs().sum();
+  }
+  std::printf("internal power %.12e, stress power %.12e\n", internal_power, stress_power);
+  ASSERT_EQ(wall_force.size(), 2 * strips.edges.size());
+  EXPECT_NEAR(internal_power, stress_power, 1e-12 * scale);
+}
+
+TEST(WallStrip, NodalAndWallPointForcesBalanceForAnyStress) {
+  // Arrange: arbitrary stresses; a rigid translation has L = 0 at every node, so the internal
+  // forces of the nodes and of the wall points sum to zero and the force of the soil on the walls
+  // is the resultant of the nodal internal forces
+  const Lattice lattice;
+  const std::vector<Vec2> x = jittered(lattice, 5);
+  const AlphaMesh mesh = delaunay_mesh(x);
+  const WallStrips strips = strips_of(mesh, x, floor_and_left_wall(lattice), lattice.dp);
+  SmoothingCells cells;
+  build_smoothing_cells(mesh, x, cells, 0.5 * lattice.dp, &strips);
+  const RandomState s = random_state(x.size(), 12);
+  // Act
+  std::vector<Vec2> force;
+  internal_forces(cells, s.stress, force);
+  std::vector<Vec2> reaction(2, Vec2::Zero());
+  add_wall_strip_reactions(strips, cells, s.stress, reaction);
+  // Assert: sum_l F_l = -sum_w F_w = the force on the walls
+  Vec2 nodal = Vec2::Zero();
+  for (const Vec2& f : force) nodal += f;
+  const Vec2 on_walls = reaction[0] + reaction[1];
+  std::printf("nodal resultant %.6e %.6e, force on the walls %.6e %.6e\n", nodal.x(), nodal.y(),
+              on_walls.x(), on_walls.y());
+  EXPECT_LT((nodal - on_walls).norm(), 1e-9 * 1.0e5 * lattice.width());
+  EXPECT_GT(on_walls.norm(), 1.0);  // the walls do carry force
+}
+
+TEST(WallStrip, AStripHoldsItsNodesInTensionAndLetsGoBeyondTwoSpacings) {
+  // Arrange: strips found with the bottom row dp/2 over the floor, then the block lifted
+  const Lattice lattice;
+  std::vector<Vec2> x = lattice.points();
+  const AlphaMesh mesh = delaunay_mesh(x);
+  const std::vector<NodeBoundary> floor = {wall("floor", Vec2(-lattice.dp, 0.0),
+                                                Vec2(lattice.width() + lattice.dp, 0.0),
+                                                NodeCondition::bonded)};
+  std::vector<BoundaryGeometry> geometry = {orient_boundary(floor[0], x, 2.0 * lattice.dp)};
+  WallStrips strips;
+  find_wall_strips(mesh, x, floor, geometry, lattice.dp, 0.5 * lattice.dp, strips);
+  const std::size_t attached_edges = strips.edges.size();
+  // Act: lifted by one spacing (bottom row 1.5 dp off the floor, beyond contact), then by two
+  for (Vec2& p : x) p.y() += lattice.dp;
+  find_wall_strips(mesh, x, floor, geometry, lattice.dp, 0.5 * lattice.dp, strips);
+  const std::size_t lifted_edges = strips.edges.size();
+  for (Vec2& p : x) p.y() += lattice.dp;
+  find_wall_strips(mesh, x, floor, geometry, lattice.dp, 0.5 * lattice.dp, strips);
+  // Assert: still held at 1.5 dp (a clamp carries tension), let go at 2.5 dp
+  EXPECT_EQ(attached_edges, std::size_t(lattice.nx - 1));
+  EXPECT_EQ(lifted_edges, attached_edges);
+  EXPECT_TRUE(strips.edges.empty());
+}
+
+}  // namespace
+}  // namespace duet::spfem
