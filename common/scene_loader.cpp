@@ -43,10 +43,9 @@ const std::vector<std::string> kSphKeys = {"kernel",      "h_over_dp",         "
                                            "beta",        "artificial_stress", "cfl",
                                            "sound_speed", "wall_treatment",    "dummy_layers",
                                            "wall_stress", "integrator",        "continuity"};
-const std::vector<std::string> kSpfemKeys = {"alpha_factor",  "time_step_safety", "damping",
-                                             "local_damping", "stabilisation",    "remesh",
-                                             "remesh_angle",  "boundary_layer",   "time_step",
-                                             "implicit"};
+const std::vector<std::string> kSpfemKeys = {
+    "alpha_factor", "time_step_safety", "damping",        "local_damping", "stabilisation",
+    "remesh",       "remesh_angle",     "boundary_layer", "time_step",     "implicit"};
 const std::vector<std::string> kImplicitKeys = {"tolerance", "max_iterations", "load_steps",
                                                 "max_step_cuts"};
 
