@@ -283,7 +283,7 @@ TEST(SphSolver, LeapfrogKeepsAnUndampedElasticVibrationBounded) {
   // makes the top swing between 0 and twice the static settlement rho g H^2 / (2 M) for ever.
   // The stress must answer the velocities that moved the particles (velocity_gradient_pass.cpp):
   // answering the previous step's velocities grows every mode by (omega dt)^2 per step, and the
-  // shortest modes, (omega dt)^2 ~ (2 cfl)^2 = 0.04, blow up within a period.
+  // shortest modes, (omega dt)^2 ~ (2 cfl)^2 = 0.04, blow up within a few periods.
   const double dp = 0.005, w = 0.05, hgt = 0.1, g = 9.81;
   Particles p = block(10, 20, dp);
   SphSetup s = setup(dp, SphIntegrator::leapfrog);
