@@ -18,6 +18,7 @@ namespace duet::sph {
 
 using detail::artificial_stress_term;
 using detail::kParallelMin;
+using detail::PairSum;
 
 namespace {
 
@@ -167,7 +168,6 @@ void SphSolver::pair_loop(const Particles& particles) {
   const PairData* work = work_.data();
   const SymR* work_r = work_r_.data();
   const std::int32_t* work_wall = work_wall_.data();
-  const double inf = std::numeric_limits<double>::infinity();
   const bool parallel = n >= kParallelMin;
   std::fill(wall_force_scratch_.begin(), wall_force_scratch_.end(), Vec2::Zero());
   double a_max2 = 0.0;
@@ -213,16 +213,9 @@ void SphSolver::pair_loop(const Particles& particles) {
   // What a pair adds to one end i with neighbour mass m_j and volume V_j (the other end's share
   // has the same form with m_i, V_i and -grad_i W_ij for the force).
   const auto add = [](PairSum& s, const Pair& p, double m_j, double volume_j, double sign) {
-    s.ax += sign * m_j * (p.cxx * p.gx + p.cxy * p.gy);
+    s.ax += sign * m_j * (p.cxx * p.gx + p.cxy * p.gy);  // eq 30
     s.ay += sign * m_j * (p.cxy * p.gx + p.cyy * p.gy);
-    // Peng 2015 eq 21: grad v_i = sum_j (v_j - v_i) (x) grad_i W_ij m_j / rho_j (the same sign
-    // at both ends: v and grad W both flip)
-    s.lxx -= p.vx * p.gx * volume_j;
-    s.lxy -= p.vx * p.gy * volume_j;
-    s.lyx -= p.vy * p.gx * volume_j;
-    s.lyy -= p.vy * p.gy * volume_j;
-    // simhypo-sand eq 24: d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij (same sign)
-    s.rho_rate += m_j * (p.vx * p.gx + p.vy * p.gy);
+    s.add_rates(p.gx, p.gy, p.vx, p.vy, m_j, volume_j);  // eqs 21 and 24
   };
 
   // Pass 1, soil and ghost pairs. Each soil pair sits in one row (NeighbourLists::
@@ -236,13 +229,13 @@ void SphSolver::pair_loop(const Particles& particles) {
 #pragma omp single nowait
     team = omp_get_num_threads();
     PairSum* sum = pair_sum_.data() + t * n;
-    std::fill(sum, sum + n, PairSum{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, inf});
+    std::fill(sum, sum + n, PairSum{});
     Vec2* wall_force = wall_force_scratch_.data() + t * n_walls;
 #pragma omp for schedule(dynamic, 256)
     for (std::size_t k = 0; k < n; ++k) {
       const PairData& pi = work[k];
       const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
-      PairSum s{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, inf};
+      PairSum s;
       Pair p;
       for (const std::uint32_t j : neighbours_.early(k)) {
         const PairData& pj = work[j];
@@ -264,16 +257,7 @@ void SphSolver::pair_loop(const Particles& particles) {
               pi.m * pj.m * Vec2(p.cxx * p.gx + p.cxy * p.gy, p.cxy * p.gx + p.cyy * p.gy);
         }
       }
-      PairSum& sk = sum[k];
-      sk.ax += s.ax;
-      sk.ay += s.ay;
-      sk.lxx += s.lxx;
-      sk.lxy += s.lxy;
-      sk.lyx += s.lyx;
-      sk.lyy += s.lyy;
-      sk.rho_rate += s.rho_rate;
-      sk.min_xx = std::min(sk.min_xx, s.min_xx);
-      sk.min_yy = std::min(sk.min_yy, s.min_yy);
+      sum[k] += s;
     }
   }
 
@@ -289,18 +273,7 @@ void SphSolver::pair_loop(const Particles& particles) {
       const std::size_t i = order_[k];
       const double rho_i = pi.rho;
       PairSum s = pair_sum_[k];
-      for (std::size_t t = 1; t < n_team; ++t) {
-        const PairSum& o_t = pair_sum_[t * n + k];
-        s.ax += o_t.ax;
-        s.ay += o_t.ay;
-        s.lxx += o_t.lxx;
-        s.lxy += o_t.lxy;
-        s.lyx += o_t.lyx;
-        s.lyy += o_t.lyy;
-        s.rho_rate += o_t.rho_rate;
-        s.min_xx = std::min(s.min_xx, o_t.min_xx);
-        s.min_yy = std::min(s.min_yy, o_t.min_yy);
-      }
+      for (std::size_t t = 1; t < n_team; ++t) s += pair_sum_[t * n + k];
       const auto late = neighbours_.late(k);
       if (!late.empty()) {
         // Dummy particles: density of i, volume dp^2 of its lattice, and stress sigma_max

@@ -16,6 +16,7 @@
 #include "constitutive/model.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
+#include "sph/pair_terms.hpp"
 #include "sph/rigid_contact.hpp"
 #include "sph/walls.hpp"
 
@@ -157,10 +158,7 @@ class SphSolver {
   long penetrations_ = 0;  // soil particles behind a wall after the last update
   // Per thread, per soil particle (working order): the pair loop's sums of eqs 21, 30 and 24
   // and eq 31's smallest normal stresses among the soil neighbours.
-  struct PairSum {
-    double ax, ay, lxx, lxy, lyx, lyy, rho_rate, min_xx, min_yy;
-  };
-  std::vector<PairSum> pair_sum_;
+  std::vector<detail::PairSum> pair_sum_;
   // Per thread, per wall: force of the soil on the wall.
   std::vector<Vec2> wall_force_scratch_;
   std::vector<Vec2> wall_force_;

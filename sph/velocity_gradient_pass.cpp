@@ -17,6 +17,7 @@
 namespace duet::sph {
 
 using detail::kParallelMin;
+using detail::PairSum;
 
 void SphSolver::velocity_gradient_pass(const Particles& particles) {
   {
@@ -33,7 +34,6 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
   const double tiny = std::numeric_limits<double>::min();
   const double dummy_volume = setup_.spacing * setup_.spacing;
   const PairData* work = work_.data();
-  const double inf = std::numeric_limits<double>::infinity();
   const bool parallel = n >= kParallelMin;
   int team = 1;
 
@@ -50,16 +50,9 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
     p = {f * dx, f * dy, pi.vx - pj.vx, pi.vy - pj.vy};
     return true;
   };
-  // What the pair adds to one end with the other end's mass m and volume V: the same form at
-  // both ends, since v_i - v_j and grad_i W_ij both flip.
+  // Peng 2015 eq 21 and simhypo eq 24, the same at both ends (PairSum::add_rates).
   const auto add = [](PairSum& s, const Pair& p, double m, double volume) {
-    // Peng 2015 eq 21: grad v_i = sum_j (v_j - v_i) (x) grad_i W_ij m_j / rho_j
-    s.lxx -= p.vx * p.gx * volume;
-    s.lxy -= p.vx * p.gy * volume;
-    s.lyx -= p.vy * p.gx * volume;
-    s.lyy -= p.vy * p.gy * volume;
-    // simhypo-sand eq 24: d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij
-    s.rho_rate += m * (p.vx * p.gx + p.vy * p.gy);
+    s.add_rates(p.gx, p.gy, p.vx, p.vy, m, volume);
   };
 
   // Soil pairs once each, shares scattered into the thread's own buffer (as in pair_loop);
@@ -70,11 +63,11 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
 #pragma omp single nowait
     team = omp_get_num_threads();
     PairSum* sum = pair_sum_.data() + t_id * n;
-    std::fill(sum, sum + n, PairSum{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, inf});
+    std::fill(sum, sum + n, PairSum{});
 #pragma omp for schedule(dynamic, 256)
     for (std::size_t k = 0; k < n; ++k) {
       const PairData& pi = work[k];
-      PairSum s{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, inf, inf};
+      PairSum s;
       Pair p;
       for (const std::uint32_t j : neighbours_.early(k)) {
         const PairData& pj = work[j];
@@ -86,26 +79,14 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
       for (const std::uint32_t j : neighbours_.late(k)) {
         if (pair_terms(pi, work[j], p)) add(s, p, pi.rho * dummy_volume, dummy_volume);
       }
-      PairSum& sk = sum[k];
-      sk.lxx += s.lxx;
-      sk.lxy += s.lxy;
-      sk.lyx += s.lyx;
-      sk.lyy += s.lyy;
-      sk.rho_rate += s.rho_rate;
+      sum[k] += s;
     }
   }
   const auto n_team = static_cast<std::size_t>(team);
 #pragma omp parallel for schedule(static) if (parallel)
   for (std::size_t k = 0; k < n; ++k) {
     PairSum s = pair_sum_[k];
-    for (std::size_t t_id = 1; t_id < n_team; ++t_id) {
-      const PairSum& o = pair_sum_[t_id * n + k];
-      s.lxx += o.lxx;
-      s.lxy += o.lxy;
-      s.lyx += o.lyx;
-      s.lyy += o.lyy;
-      s.rho_rate += o.rho_rate;
-    }
+    for (std::size_t t_id = 1; t_id < n_team; ++t_id) s += pair_sum_[t_id * n + k];
     const std::size_t i = order_[k];
     Mat2 l;
     l << s.lxx, s.lxy, s.lyx, s.lyy;
