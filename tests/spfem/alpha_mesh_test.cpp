@@ -3,12 +3,6 @@
 // the smallest-angle measure.
 #include "spfem/alpha_mesh.hpp"
 
-#include <CGAL/Alpha_shape_2.h>
-#include <CGAL/Alpha_shape_face_base_2.h>
-#include <CGAL/Alpha_shape_vertex_base_2.h>
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,19 +13,14 @@
 #include <utility>
 #include <vector>
 
+#include "tests/spfem/alpha_shape_oracle.hpp"
+
 namespace duet::spfem {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using AlphaVertex = CGAL::Alpha_shape_vertex_base_2<
-    Kernel, CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, Kernel>>;
-using AlphaFace = CGAL::Alpha_shape_face_base_2<Kernel>;
-using AlphaDelaunay =
-    CGAL::Delaunay_triangulation_2<Kernel,
-                                   CGAL::Triangulation_data_structure_2<AlphaVertex, AlphaFace>>;
-using AlphaShape = CGAL::Alpha_shape_2<AlphaDelaunay>;
-
-using FaceSet = std::set<Triangle>;
+using testing::alpha_shape_interior_faces;
+using testing::FaceSet;
+using testing::kept_faces;
 
 /// Cell-centred square lattice of nx x ny nodes, spacing dp, cells starting at `origin`.
 std::vector<Vec2> lattice(int nx, int ny, double dp, const Vec2& origin = Vec2::Zero()) {
@@ -47,34 +36,6 @@ void perturb(std::vector<Vec2>& x, double amplitude, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-amplitude, amplitude);
   for (auto& p : x) p += Vec2(u(rng), u(rng));
-}
-
-Triangle sorted(Triangle t) {
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
-FaceSet kept_faces(const AlphaMesh& mesh) {
-  FaceSet faces;
-  for (const Triangle& t : mesh.triangles) faces.insert(sorted(t));
-  return faces;
-}
-
-/// The INTERIOR faces of CGAL's regularized alpha shape; its alpha is the squared radius.
-FaceSet alpha_shape_interior_faces(const std::vector<Vec2>& x, double alpha) {
-  std::vector<std::pair<Kernel::Point_2, std::int32_t>> indexed;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    indexed.emplace_back(Kernel::Point_2(x[i].x(), x[i].y()), static_cast<std::int32_t>(i));
-  }
-  AlphaDelaunay delaunay(indexed.begin(), indexed.end());
-  const AlphaShape shape(delaunay, alpha * alpha, AlphaShape::REGULARIZED);
-  FaceSet faces;
-  for (auto f = shape.finite_faces_begin(); f != shape.finite_faces_end(); ++f) {
-    if (shape.classify(f) == AlphaShape::INTERIOR) {
-      faces.insert(sorted({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}));
-    }
-  }
-  return faces;
 }
 
 TEST(AlphaMesh, KeptFacesAreTheAlphaShapeInteriorFacesOnAPerturbedLattice) {

@@ -2,12 +2,6 @@
 // points moves the vertices of the last triangulation and restores the Delaunay property by edge
 // flips, falling back to a fresh build when a face turns over. Either way the kept faces must be
 // the interior faces of CGAL::Alpha_shape_2 of the new points.
-#include <CGAL/Alpha_shape_2.h>
-#include <CGAL/Alpha_shape_face_base_2.h>
-#include <CGAL/Alpha_shape_vertex_base_2.h>
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,50 +11,17 @@
 #include <vector>
 
 #include "spfem/alpha_mesh.hpp"
+#include "tests/spfem/alpha_shape_oracle.hpp"
 
 namespace duet::spfem {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using AlphaVertex = CGAL::Alpha_shape_vertex_base_2<
-    Kernel, CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, Kernel>>;
-using AlphaFace = CGAL::Alpha_shape_face_base_2<Kernel>;
-using AlphaDelaunay =
-    CGAL::Delaunay_triangulation_2<Kernel,
-                                   CGAL::Triangulation_data_structure_2<AlphaVertex, AlphaFace>>;
-using AlphaShape = CGAL::Alpha_shape_2<AlphaDelaunay>;
-using FaceSet = std::set<Triangle>;
+using testing::alpha_shape_interior_faces;
+using testing::FaceSet;
+using testing::kept_faces;
 
 constexpr double kSpacing = 0.01;
 constexpr double kAlpha = 1.5 * kSpacing;
-
-Triangle sorted(Triangle t) {
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
-FaceSet kept_faces(const AlphaMesh& mesh) {
-  FaceSet faces;
-  for (const Triangle& t : mesh.triangles) faces.insert(sorted(t));
-  return faces;
-}
-
-/// The INTERIOR faces of CGAL's regularized alpha shape; its alpha is the squared radius.
-FaceSet alpha_shape_interior_faces(const std::vector<Vec2>& x, double alpha) {
-  std::vector<std::pair<Kernel::Point_2, std::int32_t>> indexed;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    indexed.emplace_back(Kernel::Point_2(x[i].x(), x[i].y()), static_cast<std::int32_t>(i));
-  }
-  AlphaDelaunay delaunay(indexed.begin(), indexed.end());
-  const AlphaShape shape(delaunay, alpha * alpha, AlphaShape::REGULARIZED);
-  FaceSet faces;
-  for (auto f = shape.finite_faces_begin(); f != shape.finite_faces_end(); ++f) {
-    if (shape.classify(f) == AlphaShape::INTERIOR) {
-      faces.insert(sorted({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}));
-    }
-  }
-  return faces;
-}
 
 /// A 20 x 12 cell-centred lattice, every node moved by up to 0.2 dp (no cocircular ties).
 std::vector<Vec2> perturbed_lattice(std::mt19937& rng) {

@@ -1,6 +1,7 @@
 #pragma once
-// Test meshes for the smoothing tests: every finite face of a CGAL Delaunay triangulation of a
-// cloud, counter-clockwise, built here (not by build_alpha_mesh) so the smoothing is pinned alone.
+// Test meshes for the smoothing tests: a cell-centred lattice, and every finite face of a CGAL
+// Delaunay triangulation of a cloud, counter-clockwise, built here (not by build_alpha_mesh) so the
+// smoothing is pinned alone.
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -13,6 +14,23 @@
 #include "spfem/alpha_mesh.hpp"
 
 namespace duet::spfem::testing {
+
+/// The particles of a W x H rectangle sampled cell-centred, as the scenes do: (i + 1/2) dp, lower
+/// left corner at the origin (walls along x = 0 and y = 0 lie dp/2 off the first column and row).
+struct Lattice {
+  double dp = 0.05;
+  int nx = 24;
+  int ny = 8;
+  double width() const { return nx * dp; }
+  double height() const { return ny * dp; }
+  std::vector<Vec2> points() const {
+    std::vector<Vec2> x;
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) x.emplace_back((i + 0.5) * dp, (j + 0.5) * dp);
+    }
+    return x;
+  }
+};
 
 inline double signed_area(const Triangle& t, const std::vector<Vec2>& x) {
   const Vec2 ab = x[t[1]] - x[t[0]];

@@ -20,23 +20,8 @@ namespace duet::spfem {
 namespace {
 
 using testing::delaunay_mesh;
+using testing::Lattice;
 using testing::signed_area;
-
-// The particles of a W x H rectangle sampled cell-centred, as the scenes do: (i + 1/2) dp.
-struct Lattice {
-  double dp = 0.05;
-  int nx = 24;
-  int ny = 8;
-  double width() const { return nx * dp; }
-  double height() const { return ny * dp; }
-  std::vector<Vec2> points() const {
-    std::vector<Vec2> x;
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) x.emplace_back((i + 0.5) * dp, (j + 0.5) * dp);
-    }
-    return x;
-  }
-};
 
 // A lattice jittered by up to 0.2 dp (a mesh with no ties and no regular surface).
 std::vector<Vec2> jittered(const Lattice& lattice, unsigned seed) {

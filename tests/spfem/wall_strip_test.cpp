@@ -20,23 +20,7 @@ namespace duet::spfem {
 namespace {
 
 using testing::delaunay_mesh;
-
-// The particles of a W x H rectangle sampled cell-centred, (i + 1/2) dp, lower left corner at the
-// origin: the floor y = 0 and the left wall x = 0 lie dp/2 off the first row and column.
-struct Lattice {
-  double dp = 0.05;
-  int nx = 24;
-  int ny = 8;
-  double width() const { return nx * dp; }
-  double height() const { return ny * dp; }
-  std::vector<Vec2> points() const {
-    std::vector<Vec2> x;
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) x.emplace_back((i + 0.5) * dp, (j + 0.5) * dp);
-    }
-    return x;
-  }
-};
+using testing::Lattice;
 
 // Jittered by up to 0.2 dp; the first row and column bowed towards their walls instead (convex,
 // so every edge of theirs stays on the surface): between 0.3 dp (middle) and 0.5 dp (ends) off
