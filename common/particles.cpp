@@ -1,6 +1,14 @@
 #include "common/particles.hpp"
 
+#include <algorithm>
+
 namespace duet {
+
+void Particles::start_from_rest() {
+  std::fill(velocity.begin(), velocity.end(), Vec2::Zero());
+  std::fill(displacement.begin(), displacement.end(), Vec2::Zero());
+  std::fill(strain.begin(), strain.end(), Mat3::Zero());
+}
 
 void Particles::resize(std::size_t n) {
   position.resize(n, Vec2::Zero());

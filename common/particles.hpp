@@ -61,6 +61,9 @@ struct Particles {
   std::size_t size() const { return position.size(); }
   /// Resize every array to n (new entries zeroed).
   void resize(std::size_t n);
+  /// Velocity, displacement and strain back to zero, stress and state kept: the start of a run
+  /// after gravity loading (Peng 2015 section 5.3).
+  void start_from_rest();
 };
 
 }  // namespace duet

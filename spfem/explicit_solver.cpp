@@ -476,11 +476,7 @@ void ExplicitSolver::settle(Particles& particles, double duration, double dampin
   while (t < 0.0) t += step(particles, t);
   damping_ = 0.0;
   settling_ = false;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    particles.velocity[i] = Vec2::Zero();
-    particles.displacement[i] = Vec2::Zero();
-    particles.strain[i] = Mat3::Zero();
-  }
+  particles.start_from_rest();
   energy_reference_set_ = false;
 }
 

@@ -509,11 +509,7 @@ void SphSolver::settle(Particles& particles, double duration, double damping) {
   while (t < 0.0) t += step(particles, t);
   damping_ = 0.0;
   settling_ = false;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    particles.velocity[i] = Vec2::Zero();
-    particles.displacement[i] = Vec2::Zero();
-    particles.strain[i] = Mat3::Zero();
-  }
+  particles.start_from_rest();
   first_step_ = true;
 }
 
