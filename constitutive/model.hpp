@@ -28,6 +28,9 @@ struct InternalVariable {
 struct ElasticModuli {
   double bulk = 0.0;   // K, Pa
   double shear = 0.0;  // G, Pa
+  // Bound M on the tangent for the explicit SPFEM time step, Pa: |dsigma|_2 <= M |v| |b| for every
+  // in-plane strain rate D = sym(v (x) b). 0 = use |lambda| + 2G (exact for isotropic elasticity).
+  double tangent_bound = 0.0;
 };
 
 class Model {
