@@ -27,6 +27,10 @@ bool is_no_slip_wall(const NodeBoundary& b) {
   return b.condition == NodeCondition::bonded && !b.rigid_body;
 }
 
+bool is_free_slip_wall(const NodeBoundary& b) {
+  return b.condition == NodeCondition::smooth && !b.rigid_body;
+}
+
 // Entry of node `column` in the row between row_begin and row_end (present: the strip's real nodes
 // share the edge's triangle with k).
 Index find_entry(const SmoothingCells& cells, Index row_begin, Index row_end, Index column) {
@@ -45,6 +49,7 @@ void index_wall_edges(std::size_t n_nodes, WallStrips& strips) {
   for (const WallEdge& e : strips.edges) {
     ++start[std::size_t(e.a) + 1];
     ++start[std::size_t(e.b) + 1];
+    if (e.free_slip) continue;  // its nodes stay in contact with the wall
     const std::uint64_t bit = std::uint64_t{1} << e.boundary;
     strips.held[std::size_t(e.a)] |= bit;
     strips.held[std::size_t(e.b)] |= bit;
@@ -64,6 +69,7 @@ void find_wall_strips(const AlphaMesh& mesh, const std::vector<Vec2>& points,
                       double layer_depth, WallStrips& strips) {
   const std::size_t n = points.size();
   if (strips.attached.size() != n) strips.attached.assign(n, 0);
+  strips.touching.assign(n, 0);
   strips.edges.clear();
   const bool know_surface = mesh.surface.size() == n;
   // node_contact's bonded contact: within dp/2 (1 + 1e-6) on the soil side, or crossed by < dp
@@ -74,12 +80,18 @@ void find_wall_strips(const AlphaMesh& mesh, const std::vector<Vec2>& points,
   NodeContact projection;
   bool any_wall = false;
   for (std::size_t b = 0; b < boundaries.size() && b < kMaxStripBoundaries; ++b) {
-    if (!is_no_slip_wall(boundaries[b])) continue;
+    const bool free_slip = is_free_slip_wall(boundaries[b]);
+    if (!is_no_slip_wall(boundaries[b]) && !free_slip) continue;
     any_wall = true;
     const std::uint64_t bit = std::uint64_t{1} << b;
     for (std::size_t i = 0; i < n; ++i) {
       if (know_surface && mesh.surface[i] == 0) continue;  // only surface edges own strips
-      if (strips.attached[i] & bit) {
+      if (free_slip) {
+        // node_contact's smooth contact, this step only
+        found.clear();
+        find_contacts(geometry[b], false, Index(i), Index(b), points[i], reach, depth, found);
+        if (!found.empty()) strips.touching[i] |= bit;
+      } else if (strips.attached[i] & bit) {
         // Attached: kept while it still projects onto the wall, within the release distance.
         if (!project_on_boundary(geometry[b], Index(i), Index(b), points[i], depth, release,
                                  projection)) {
@@ -101,7 +113,8 @@ void find_wall_strips(const AlphaMesh& mesh, const std::vector<Vec2>& points,
         const Index a = t[c];
         const Index b = t[(c + 1) % 3];
         const std::uint64_t common =
-            strips.attached[std::size_t(a)] & strips.attached[std::size_t(b)];
+            (strips.attached[std::size_t(a)] | strips.touching[std::size_t(a)]) &
+            (strips.attached[std::size_t(b)] | strips.touching[std::size_t(b)]);
         if (common != 0) candidates.emplace_back(a, b, common);
       }
     }
@@ -126,7 +139,7 @@ void find_wall_strips(const AlphaMesh& mesh, const std::vector<Vec2>& points,
           continue;
         }
         strips.edges.push_back({a, b, Index(w), at_a.point, at_b.point, at_a.boundary_velocity,
-                                at_b.boundary_velocity});
+                                at_b.boundary_velocity, is_free_slip_wall(boundaries[w])});
         break;
       }
     }
@@ -164,6 +177,7 @@ double add_wall_strip_terms(const WallStrips& strips, const std::vector<Vec2>& p
   struct Term {
     std::array<Vec2, 3> weighted;  // share x (A_tri / 3) grad N_v
     double area = 0.0;             // share x A_tri / 3, what node k takes
+    bool solo = false;             // k is the triangle's only real node
   };
   const auto term = [&](const WallEdge& e, const std::array<int, 3>& t, Term& out) {
     const std::array<Vec2, 4> x = {points[std::size_t(e.a)], points[std::size_t(e.b)], e.a_wall,
@@ -178,6 +192,7 @@ double add_wall_strip_terms(const WallStrips& strips, const std::vector<Vec2>& p
       }
     }
     if (!has_k) return false;
+    out.solo = n_real == 1;
     const Vec2& x0 = x[std::size_t(t[0])];
     const Vec2& x1 = x[std::size_t(t[1])];
     const Vec2& x2 = x[std::size_t(t[2])];
@@ -190,16 +205,32 @@ double add_wall_strip_terms(const WallStrips& strips, const std::vector<Vec2>& p
   };
   const Index first = strips.edge_offset[k];
   const Index last = strips.edge_offset[k + 1];
-  // The strips' own area at k, then the wedge spread over them in proportion.
+  // The strips' own area at k, then the wedge, spread in proportion over k's strip triangles. At
+  // a corner between a free-slip wall and a no-slip one (the oedometer's) only over the no-slip
+  // triangles that hold k alone (k, k's wall point, the other wall point): those fields involve k
+  // and the wall only. The corner node is pushed along the free-slip wall by the end of its
+  // strip, sigma_tt dp / 2, and the wedge, whose field then stretches between the node and the
+  // no-slip wall, carries exactly that into the wall's points, as the corner square of the body
+  // bears on that wall. (Spread over every strip triangle, the wedge pushed the corners of a
+  // uniformly stressed confined sample into their walls and the nodes beside them off them;
+  // spread over the solo triangles at a no-slip wall's free end, the cantilever's clamp, it
+  // threw the corner node out at P L^2/EI = 2.)
   double strip_area = 0.0;
+  double solo_area = 0.0;
+  bool at_free_slip_wall = false;
   Term t;
   for (Index j = first; j < last; ++j) {
     const WallEdge& e = strips.edges[std::size_t(strips.node_edges[std::size_t(j)])];
+    at_free_slip_wall = at_free_slip_wall || e.free_slip;
     for (const std::array<int, 3>& tri : kTriangles) {
-      if (term(e, tri, t)) strip_area += t.area;
+      if (!term(e, tri, t)) continue;
+      strip_area += t.area;
+      if (t.solo && !e.free_slip) solo_area += t.area;
     }
   }
-  const double scale = strip_area > 0.0 ? (strip_area + wedge) / strip_area : 1.0;
+  const bool to_solo = at_free_slip_wall && solo_area > 0.0;
+  const double carrying = to_solo ? solo_area : strip_area;
+  const double wedge_factor = carrying > 0.0 ? wedge / carrying : 0.0;
   Index wall_entry = cells.wall_offset[k];
   for (Index j = first; j < last; ++j, wall_entry += 2) {
     const WallEdge& e = strips.edges[std::size_t(strips.node_edges[std::size_t(j)])];
@@ -208,10 +239,13 @@ double add_wall_strip_terms(const WallStrips& strips, const std::vector<Vec2>& p
     cells.wall_gradient[wall_entry + 1].setZero();
     for (const std::array<int, 3>& tri : kTriangles) {
       if (!term(e, tri, t)) continue;
+      const bool carries = !to_solo || (t.solo && !e.free_slip);
+      const double scale = carries ? 1.0 + wedge_factor : 1.0;
       for (std::size_t c = 0; c < 3; ++c) {
         const int v = tri[c];
-        if (v < 2) {
-          cells.gradient[find_entry(cells, row_begin, row_end, node[std::size_t(v)])] +=
+        if (v < 2 || e.free_slip) {
+          // A free-slip strip's wall point moves with its node: its term folds into the node's.
+          cells.gradient[find_entry(cells, row_begin, row_end, node[std::size_t(v % 2)])] +=
               scale * t.weighted[c];
         } else {
           cells.wall_gradient[wall_entry + (v - 2)] += scale * t.weighted[c];
@@ -219,7 +253,7 @@ double add_wall_strip_terms(const WallStrips& strips, const std::vector<Vec2>& p
       }
     }
   }
-  return scale * strip_area;
+  return strip_area > 0.0 ? strip_area + wedge : 0.0;
 }
 
 void size_wall_entries(const WallStrips* strips, std::size_t n_nodes, SmoothingCells& cells) {

@@ -20,6 +20,16 @@
 // where it no longer projects onto the wall or lies farther than `kReleaseDistance` spacings from
 // it (the strip would overlap other material). Nodes of a strip move freely, held by the strip's
 // stiffness; an attached node in no strip (an isolated contact) stays bonded.
+//
+// Free-slip walls get strips too. Without one, the boundary-layer strip of a surface edge against
+// the wall extends the linear field of the edge's triangle e into the strip, and so couples the
+// node opposite the edge: under a uniform stress sigma it pushes that interior node with
+// |sigma| dp / 2 towards the wall, which nothing balances (a confined sample - the oedometer -
+// starts moving at t = 0 and a hypoplastic one relaxes). A free-slip strip is the same quad, with
+// its wall points moving with their nodes: the wall's contact holds the nodes' normal velocity
+// (the nodes stay in contact: it is not skipped as for a no-slip strip), the tangential velocity
+// is free, so the strip's velocity gradient is (v_b - v_a) (x) t / |ab|, of a and b alone. A
+// node touches a free-slip wall step by step (no attachment: it leaves when it moves away).
 
 #include <cstdint>
 #include <span>
@@ -47,6 +57,9 @@ struct WallEdge {
   Vec2 b_wall = Vec2::Zero();
   Vec2 a_wall_velocity = Vec2::Zero();
   Vec2 b_wall_velocity = Vec2::Zero();
+  // A free-slip wall's strip: its wall points move with their nodes (a' with a, b' with b), whose
+  // normal velocity the wall's contact holds, so the strip only stretches along the edge.
+  bool free_slip = false;
 };
 
 /// The strips of one step plus the nodes' attachments, which persist from step to step.
@@ -55,16 +68,18 @@ struct WallStrips {
   std::vector<std::int32_t> edge_offset;  // n_nodes + 1 starts into node_edges
   std::vector<std::int32_t> node_edges;   // indices into edges, per node
   std::vector<std::uint64_t> attached;    // per node: bit b = attached to boundary b (persistent)
-  std::vector<std::uint64_t> held;        // per node: bit b = in a strip of boundary b this step
+  std::vector<std::uint64_t> held;        // per node: bit b = in a no-slip strip of boundary b
+  std::vector<std::uint64_t> touching;    // per node: bit b = touching free-slip wall b this step
 };
 
 /// Builds the node -> edges rows of `strips.edges` and the `held` bits (for edges set by hand).
 void index_wall_edges(std::size_t n_nodes, WallStrips& strips);
 
 /// The strips of this step: attaches the surface nodes touching a no-slip wall (a bonded,
-/// non-rigid boundary among the first 64), lets go of those that left it, and keeps every surface
-/// edge of `mesh` whose two nodes are attached to the same wall and lie at least `layer_depth` / 2
-/// off it (a thinner strip would be far stiffer than the node's cell: the node stays bonded).
+/// non-rigid boundary among the first 64), lets go of those that left it, marks those touching a
+/// free-slip wall (smooth, non-rigid), and keeps every surface edge of `mesh` whose two nodes are
+/// attached to (touch) the same wall and lie at least `layer_depth` / 2 off it (a thinner strip
+/// would be far stiffer than the node's cell: the node stays bonded, or in plain contact).
 void find_wall_strips(const AlphaMesh& mesh, const std::vector<Vec2>& points,
                       std::span<const NodeBoundary> boundaries,
                       std::span<const BoundaryGeometry> geometry, double spacing,

@@ -72,7 +72,7 @@ WallStrips strips_of(const AlphaMesh& mesh, const std::vector<Vec2>& x,
 
 const Mat2 kGeneralGradient = (Mat2() << 0.7, -1.3, 0.45, -0.2).finished();
 
-TEST(WallStrip, EveryEdgeAlongANoSlipWallGetsAStripAndAFreeSlipWallNone) {
+TEST(WallStrip, EveryEdgeAlongAWallGetsAStripAndOnlyNoSlipStripsHoldTheirNodes) {
   // Arrange: lattice on a no-slip floor beside a free-slip left wall
   const Lattice lattice;
   const std::vector<Vec2> x = lattice.points();
@@ -81,14 +81,82 @@ TEST(WallStrip, EveryEdgeAlongANoSlipWallGetsAStripAndAFreeSlipWallNone) {
   const WallStrips strips =
       strips_of(mesh, x, floor_and_left_wall(lattice, NodeCondition::smooth), lattice.dp);
   // Assert: the nx - 1 bottom edges, each a -> b left to right (soil on its left), projected on
-  // y = 0 straight below its nodes
-  ASSERT_EQ(strips.edges.size(), std::size_t(lattice.nx - 1));
+  // y = 0 straight below its nodes; the ny - 1 edges along the left wall, flagged free-slip; only
+  // the floor holds (its nodes released from plain contact)
+  ASSERT_EQ(strips.edges.size(), std::size_t(lattice.nx - 1 + lattice.ny - 1));
+  std::size_t on_floor = 0;
   for (const WallEdge& e : strips.edges) {
-    EXPECT_EQ(e.boundary, 0);
-    EXPECT_GT(x[std::size_t(e.b)].x(), x[std::size_t(e.a)].x());
-    EXPECT_NEAR((e.a_wall - Vec2(x[std::size_t(e.a)].x(), 0.0)).norm(), 0.0, 1e-15);
-    EXPECT_NEAR((e.b_wall - Vec2(x[std::size_t(e.b)].x(), 0.0)).norm(), 0.0, 1e-15);
+    const Vec2 foot_a =
+        e.boundary == 0 ? Vec2(x[std::size_t(e.a)].x(), 0.0) : Vec2(0.0, x[std::size_t(e.a)].y());
+    const Vec2 foot_b =
+        e.boundary == 0 ? Vec2(x[std::size_t(e.b)].x(), 0.0) : Vec2(0.0, x[std::size_t(e.b)].y());
+    EXPECT_EQ(e.free_slip, e.boundary == 1);
+    EXPECT_NEAR((e.a_wall - foot_a).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((e.b_wall - foot_b).norm(), 0.0, 1e-15);
+    if (e.boundary == 0) {
+      ++on_floor;
+      EXPECT_GT(x[std::size_t(e.b)].x(), x[std::size_t(e.a)].x());
+    }
   }
+  EXPECT_EQ(on_floor, std::size_t(lattice.nx - 1));
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    EXPECT_EQ(strips.held[i], x[i].y() < lattice.dp ? 1u : 0u) << "node " << i;
+  }
+}
+
+TEST(WallStrip, AUniformlyStressedConfinedSampleIsInEquilibrium) {
+  // Arrange: the oedometer's walls around the lattice: no-slip floor and top, free-slip sides; a
+  // uniform stress with no shear (a free-slip wall carries none)
+  const Lattice lattice;
+  const std::vector<Vec2> x = lattice.points();
+  const AlphaMesh mesh = delaunay_mesh(x);
+  const double w = lattice.width();
+  const double h = lattice.height();
+  const double d = lattice.dp;
+  const std::vector<NodeBoundary> walls = {
+      wall("floor", Vec2(-d, 0.0), Vec2(w + d, 0.0), NodeCondition::bonded),
+      wall("top", Vec2(w + d, h), Vec2(-d, h), NodeCondition::bonded),
+      wall("left", Vec2(0.0, h + d), Vec2(0.0, -d), NodeCondition::smooth),
+      wall("right", Vec2(w, -d), Vec2(w, h + d), NodeCondition::smooth)};
+  const WallStrips strips = strips_of(mesh, x, walls, d);
+  SmoothingCells cells;
+  build_smoothing_cells(mesh, x, cells, 0.5 * d, &strips);
+  const double sxx = -3.0e4;
+  const double syy = -6.0e4;
+  const std::vector<Mat3> stress(x.size(), Vec3(sxx, syy, sxx).asDiagonal().toDenseMatrix());
+  // Act
+  std::vector<Vec2> force;
+  internal_forces(cells, stress, force);
+  std::vector<Vec2> reaction(walls.size(), Vec2::Zero());
+  add_wall_strip_reactions(strips, cells, stress, reaction);
+  std::vector<Vec2> wall_force;
+  wall_point_forces(cells, stress, wall_force);
+  // Assert: no node is pushed along a wall, nor off it, except into a free-slip wall (the body's
+  // side force there); the left half, cut at x = W/2, balances the cut's sigma_xx H through its
+  // side nodes and the no-slip walls' points (which carry the corners' share); the no-slip walls
+  // carry sigma_yy W
+  const double tolerance = 1e-10 * std::abs(syy) * d;
+  double left_half = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const bool at_side = x[i].x() < d || x[i].x() > w - d;
+    EXPECT_NEAR(force[i].y(), 0.0, tolerance) << "node " << i;
+    if (at_side) {
+      EXPECT_GT(std::abs(force[i].x()), 0.1 * std::abs(sxx) * d) << "node " << i;
+    } else {
+      EXPECT_NEAR(force[i].x(), 0.0, tolerance) << "node " << i;
+    }
+    if (x[i].x() < d) left_half += force[i].x();
+  }
+  for (std::size_t e = 0; e < strips.edges.size(); ++e) {
+    if (strips.edges[e].a_wall.x() < 0.5 * w) left_half += wall_force[2 * e].x();
+    if (strips.edges[e].b_wall.x() < 0.5 * w) left_half += wall_force[2 * e + 1].x();
+  }
+  std::printf("floor %.6e %.6e, top %.6e %.6e, left half %.6e\n", reaction[0].x(), reaction[0].y(),
+              reaction[1].x(), reaction[1].y(), left_half);
+  EXPECT_NEAR(left_half, -sxx * h, 1e-10 * std::abs(sxx) * h);
+  EXPECT_NEAR(reaction[0].y(), syy * w, 1e-10 * std::abs(syy) * w);
+  EXPECT_NEAR(reaction[1].y(), -syy * w, 1e-10 * std::abs(syy) * w);
+  EXPECT_NEAR(reaction[0].x(), 0.0, 1e-10 * std::abs(syy) * w);
 }
 
 TEST(WallStrip, LinearVelocityStaysExactWithTheWallsMovingWithTheField) {
