@@ -166,7 +166,7 @@ void ExplicitSolver::update_mesh(const Particles& particles) {
 }
 
 double ExplicitSolver::time_step(const Particles& particles) {
-  if (setup_.options.time_step == SpfemTimeStep::cell_size) return cell_size_time_step();
+  if (setup_.options.time_step == SpfemTimeStep::cell_size) return cell_size_time_step(particles);
   // `gershgorin`. Central
   // difference is stable for dt <= 2 / omega_max (undamped), with omega_max^2 the largest
   // eigenvalue of M^-1 K, K = sum_k A_k B_k^T D_k B_k the smoothed stiffness and M the lumped
@@ -215,14 +215,17 @@ double ExplicitSolver::time_step(const Particles& particles) {
   return setup_.options.time_step_safety * 2.0 / std::sqrt(omega_squared);
 }
 
-double ExplicitSolver::cell_size_time_step() const {
+double ExplicitSolver::cell_size_time_step(const Particles& particles) const {
   // papers/004 Algorithm 1 step 3 computes dt from the node volumes: l_min is the smallest
   // smoothing-cell size sqrt(A_k) over the nodes in the mesh, c_max the largest wave speed
-  // sqrt((K + 4G/3) / rho) over all nodes. (The smallest triangle altitude fell 100x on thin
+  // sqrt(M / rho) over all nodes, M the bound on the tangent that `gershgorin` uses: K + 4G/3 for
+  // elasticity and Drucker-Prager; the hypoplastic tangent_bound, whose L + N exceeds L's
+  // isotropic K + 4G/3 by 2.2 at K0 (the oedometer at dp = 2.5 cm with that P-wave speed lost its
+  // stress from 1.4 % strain at safety 0.5). (The smallest triangle altitude fell 100x on thin
   // alpha-shape surface triangles, which a node's cell shares with its neighbours; a node held by
   // slivers alone still has a tiny cell and still cuts dt: `gershgorin` does not.) Global minimum
-  // against global maximum: conservative where moduli() only estimates a model's tangent
-  // (hypoplastic), which `gershgorin` trusts node by node.
+  // against global maximum: conservative where the stiffness varies, which `gershgorin` follows
+  // node by node.
   const std::size_t n = cells_.area.size();
   double smallest_area = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(min : smallest_area) if (n > kParallelMin)
@@ -232,7 +235,10 @@ double ExplicitSolver::cell_size_time_step() const {
   const double l_min =
       std::isfinite(smallest_area) ? std::sqrt(smallest_area) : setup_.spacing;  // no mesh: dp
   double c_max = 0.0;
-  for (const double c : wave_speed_) c_max = std::max(c_max, c);
+#pragma omp parallel for schedule(static) reduction(max : c_max) if (n > kParallelMin)
+  for (std::size_t k = 0; k < n; ++k) {
+    c_max = std::max(c_max, std::sqrt(block_modulus_[k] / particles.density[k]));
+  }
   if (!(c_max > 0.0)) {
     throw NumericalFailure("espfem: no positive wave speed (every node has zero stiffness)");
   }

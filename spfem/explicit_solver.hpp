@@ -86,7 +86,7 @@ class ExplicitSolver {
  private:
   void update_mesh(const Particles& particles);
   double time_step(const Particles& particles);
-  double cell_size_time_step() const;
+  double cell_size_time_step(const Particles& particles) const;
   void update_stress(Particles& particles, double dt);
   void assemble_forces(const Particles& particles);
   void add_stabilisation(const Particles& particles);
@@ -104,7 +104,7 @@ class ExplicitSolver {
 
   std::vector<Mat2> velocity_gradient_;
   std::vector<double> wave_speed_;     // per node, m/s
-  std::vector<double> block_modulus_;  // per node: |lambda| + 2 G (Pa), for the time step
+  std::vector<double> block_modulus_;  // per node: M = |lambda| + 2 G or the model's tangent bound (Pa)
   std::vector<double> cell_weight_;    // per cell: A_k M_k sum_m |b_km|, time-step scratch
   std::vector<Vec2> internal_force_;
   std::vector<Vec2> stabilisation_force_;
