@@ -168,6 +168,10 @@ struct Reference {
 enum class SphKernel { cubic_spline, wendland_c2 };
 enum class SphWallStress { sigma_max, bui };
 enum class SphIntegrator { verlet, leapfrog };
+/// Velocity of a no-slip dummy particle: the wall's (Peng 2015 section 4.2) or extrapolated
+/// through the wall from the soil particle it interacts with (Morris 1997 / Bui 2008,
+/// sph/dummy_velocity.hpp).
+enum class SphDummyVelocity { wall, extrapolated };
 
 /// [sph] (Peng 2015 section 5: h/dp = sqrt(2), alpha = 1, beta = 0.1; artificial stress only
 /// where there is tension, so off by default).
@@ -182,6 +186,7 @@ struct SphOptions {
   std::string wall_treatment = "dummy";
   int dummy_layers = 3;
   SphWallStress wall_stress = SphWallStress::sigma_max;
+  SphDummyVelocity dummy_velocity = SphDummyVelocity::wall;
   SphIntegrator integrator = SphIntegrator::verlet;
   bool continuity = false;
 };
@@ -197,6 +202,9 @@ enum class SpfemTimeStep { cell_size, gershgorin };
 struct SpfemOptions {
   double alpha_factor = 1.5;
   double time_step_safety = 0.5;
+  // Largest relative stress increment M / |sigma| |D| dt a step may give a node whose stiffness
+  // grows with its stress (hypoplastic); 0 = no limit.
+  double stress_increment_limit = 0.5;
   SpfemTimeStep time_step = SpfemTimeStep::cell_size;
   double damping = 0.0;        // 1/s: viscous damping force -damping m v (quasi-static runs)
   double local_damping = 0.0;  // -: local non-viscous damping, -local_damping |F| sign(v) (Cundall)

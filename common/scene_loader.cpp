@@ -39,13 +39,14 @@ const std::vector<std::string> kMeasureKeys = {"kind", "target",        "compone
                                                "time", "min_thickness", "divide_by", "scale"};
 const std::vector<std::string> kStrengthReductionKeys = {"factor", "rule"};
 const std::vector<std::string> kReferenceKeys = {"value", "source", "tolerance"};
-const std::vector<std::string> kSphKeys = {"kernel",      "h_over_dp",         "alpha",
-                                           "beta",        "artificial_stress", "cfl",
-                                           "sound_speed", "wall_treatment",    "dummy_layers",
-                                           "wall_stress", "integrator",        "continuity"};
-const std::vector<std::string> kSpfemKeys = {
-    "alpha_factor", "time_step_safety", "damping",        "local_damping", "stabilisation",
-    "remesh",       "remesh_angle",     "boundary_layer", "time_step",     "implicit"};
+const std::vector<std::string> kSphKeys = {
+    "kernel",     "h_over_dp",   "alpha",          "beta",         "artificial_stress",
+    "cfl",        "sound_speed", "wall_treatment", "dummy_layers", "wall_stress",
+    "integrator", "continuity",  "dummy_velocity"};
+const std::vector<std::string> kSpfemKeys = {"alpha_factor",  "time_step_safety",      "damping",
+                                             "local_damping", "stabilisation",         "remesh",
+                                             "remesh_angle",  "boundary_layer",        "time_step",
+                                             "implicit",      "stress_increment_limit"};
 const std::vector<std::string> kImplicitKeys = {"tolerance", "max_iterations", "load_steps",
                                                 "max_step_cuts"};
 
@@ -376,6 +377,9 @@ SphOptions read_sph(SectionReader& r) {
   o.wall_stress = r.choice("wall_stress", {"sigma-max", "bui"}, "sigma-max") == "sigma-max"
                       ? SphWallStress::sigma_max
                       : SphWallStress::bui;
+  o.dummy_velocity = r.choice("dummy_velocity", {"wall", "extrapolated"}, "wall") == "wall"
+                         ? SphDummyVelocity::wall
+                         : SphDummyVelocity::extrapolated;
   o.integrator = r.choice("integrator", {"verlet", "leapfrog"}, "verlet") == "verlet"
                      ? SphIntegrator::verlet
                      : SphIntegrator::leapfrog;
@@ -397,6 +401,8 @@ SpfemOptions read_spfem(SectionReader& r) {
                              in_closed(0.0, 1.0, "a local damping coefficient (-)"));
   o.stabilisation =
       r.number("stabilisation", o.stabilisation, non_negative("a stabilisation weight (-)"));
+  o.stress_increment_limit = r.number("stress_increment_limit", o.stress_increment_limit,
+                                      non_negative("a relative stress increment per step (-)"));
   o.remesh = r.choice("remesh", {"every-step", "angle"}, "every-step") == "every-step"
                  ? Remesh::every_step
                  : Remesh::angle;

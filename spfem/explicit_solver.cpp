@@ -53,6 +53,15 @@ double block_modulus(const constitutive::ElasticModuli& e) {
   return std::abs(e.bulk - 2.0 * e.shear / 3.0) + 2.0 * std::abs(e.shear);
 }
 
+/// M / |sigma| (1/strain) for a model whose tangent bound M scales with the stress (the
+/// hypoplastic one, homogeneous of degree 1: at -p I M = 689 p for the sand collapse), 0 for a
+/// model that gives no bound (elasticity, Drucker-Prager: their stiffness does not grow with
+/// the stress). A strain increment |D| dt changes the stress by up to M |D| dt.
+double stiffening(const constitutive::ElasticModuli& e, const Mat3& stress) {
+  const double size = stress.norm();
+  return e.tangent_bound > 0.0 && size > 0.0 ? e.tangent_bound / size : 0.0;
+}
+
 }  // namespace
 
 ExplicitSolver::ExplicitSolver(EspfemSetup setup) : setup_(std::move(setup)) {
@@ -83,6 +92,7 @@ void ExplicitSolver::initialise(Particles& particles) {
   velocity_gradient_.assign(n, Mat2::Zero());
   wave_speed_.assign(n, 0.0);
   block_modulus_.assign(n, 0.0);
+  stiffening_.assign(n, 0.0);
   internal_force_.assign(n, Vec2::Zero());
   stabilisation_force_.assign(n, Vec2::Zero());
   external_force_.assign(n, Vec2::Zero());
@@ -100,6 +110,7 @@ void ExplicitSolver::initialise(Particles& particles) {
         particles.stress[i], std::span<const double>(particles.internal.of(i), n_internal_[m]));
     wave_speed_[i] = std::sqrt(std::max(e.bulk + 4.0 * e.shear / 3.0, 0.0) / particles.density[i]);
     block_modulus_[i] = block_modulus(e);
+    stiffening_[i] = stiffening(e, particles.stress[i]);
   }
 }
 
@@ -166,7 +177,34 @@ void ExplicitSolver::update_mesh(const Particles& particles) {
 }
 
 double ExplicitSolver::time_step(const Particles& particles) {
-  if (setup_.options.time_step == SpfemTimeStep::cell_size) return cell_size_time_step(particles);
+  const double dt = setup_.options.time_step == SpfemTimeStep::cell_size
+                        ? cell_size_time_step(particles)
+                        : gershgorin_time_step(particles);
+  // Stress increment: a hypoplastic node's stiffness grows with its stress, so a node near the
+  // apex (little stress, much strain rate: a free-falling grain hitting the pile) stiffens by
+  // up to exp(M / |sigma| |D| dt) within one step, far beyond what the start-of-step stiffness
+  // of either rule allowed for. Bound the relative stress increment, M / |sigma| |D| dt <= limit,
+  // at the nodes being loaded (stress power sigma : D > 0); one unloading or pulled apart (a
+  // surface node leaving the body, whose strain rate is largest) only softens.
+  const std::size_t n = velocity_gradient_.size();
+  double rate = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : rate) if (n > kParallelMin)
+  for (std::size_t k = 0; k < n; ++k) {
+    if (stiffening_[k] > 0.0 && cells_.area[k] > 0.0) {
+      const Mat2 d = sym2(velocity_gradient_[k]);
+      const Mat2 sigma = particles.stress[k].topLeftCorner<2, 2>();
+      if ((sigma.array() * d.array()).sum() > 0.0) rate = std::max(rate, stiffening_[k] * d.norm());
+    }
+  }
+  const double limit = setup_.options.stress_increment_limit;
+  if (limit > 0.0 && rate * dt > limit) {
+    ++counters_.stress_limited_steps;
+    return limit / rate;
+  }
+  return dt;
+}
+
+double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
   // `gershgorin`. Central
   // difference is stable for dt <= 2 / omega_max (undamped), with omega_max^2 the largest
   // eigenvalue of M^-1 K, K = sum_k A_k B_k^T D_k B_k the smoothed stiffness and M the lumped
@@ -248,8 +286,6 @@ double ExplicitSolver::cell_size_time_step(const Particles& particles) const {
 
 void ExplicitSolver::update_stress(Particles& particles, double dt) {
   const std::size_t n = particles.size();
-  // papers/004 explicit cycle step 4: smoothed strain (rate) of the nodes
-  smoothed_velocity_gradients(cells_, particles.velocity, velocity_gradient_);
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
     const auto m = static_cast<std::size_t>(particles.material[i]);
@@ -269,6 +305,7 @@ void ExplicitSolver::update_stress(Particles& particles, double dt) {
     // P-wave speed c = sqrt((K + 4 G / 3) / rho)
     wave_speed_[i] = std::sqrt(std::max(e.bulk + 4.0 * e.shear / 3.0, 0.0) / particles.density[i]);
     block_modulus_[i] = block_modulus(e);
+    stiffening_[i] = stiffening(e, particles.stress[i]);
   }
 }
 
@@ -441,6 +478,9 @@ double ExplicitSolver::step(Particles& particles, double time) {
   double dt = 0.0;
   {
     ScopedTimer t(timers_, Phase::constitutive);
+    // papers/004 explicit cycle step 4: smoothed strain (rate) of the nodes, before dt, which
+    // the stress increment it gives also bounds
+    smoothed_velocity_gradients(cells_, particles.velocity, velocity_gradient_);
     dt = time_step(particles);
     update_stress(particles, dt);
   }
@@ -505,6 +545,7 @@ Json ExplicitSolver::diagnostics() const {
   j["contacts_max"] = c.contacts_max;
   j["wall_strip_edges"] = static_cast<long>(wall_strips_.edges.size());
   j["stabilisation"] = setup_.options.stabilisation;
+  j["stress_limited_steps"] = c.stress_limited_steps;
   j["energy_reference"] = c.energy_reference;
   j["energy_drift_max"] = c.energy_drift_max;
   const double steps = static_cast<double>(std::max(c.steps, 1L));

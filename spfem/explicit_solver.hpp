@@ -50,6 +50,7 @@ struct EspfemCounters {
   long contacts_max = 0;
   double energy_reference = 0.0;  // kinetic + 0.5 sum A_k sigma:eps after the first step
   double energy_drift_max = 0.0;  // max |E - E_ref| / E_ref since then
+  long stress_limited_steps = 0;  // steps whose dt the stress-increment limit set
 };
 
 class ExplicitSolver {
@@ -87,6 +88,7 @@ class ExplicitSolver {
   void update_mesh(const Particles& particles);
   double time_step(const Particles& particles);
   double cell_size_time_step(const Particles& particles) const;
+  double gershgorin_time_step(const Particles& particles);
   void update_stress(Particles& particles, double dt);
   void assemble_forces(const Particles& particles);
   void add_stabilisation(const Particles& particles);
@@ -103,9 +105,11 @@ class ExplicitSolver {
   std::vector<std::int32_t> node_triangle_;
 
   std::vector<Mat2> velocity_gradient_;
-  std::vector<double> wave_speed_;     // per node, m/s
-  std::vector<double> block_modulus_;  // per node: M = |lambda| + 2 G or the model's tangent bound (Pa)
-  std::vector<double> cell_weight_;    // per cell: A_k M_k sum_m |b_km|, time-step scratch
+  std::vector<double> wave_speed_;  // per node, m/s
+  std::vector<double>
+      block_modulus_;  // per node: M = |lambda| + 2 G or the model's tangent bound (Pa)
+  std::vector<double> stiffening_;   // per node: M / |sigma| (0: stiffness not stress-bound)
+  std::vector<double> cell_weight_;  // per cell: A_k M_k sum_m |b_km|, time-step scratch
   std::vector<Vec2> internal_force_;
   std::vector<Vec2> stabilisation_force_;
   std::vector<Vec2> external_force_;

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <memory>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "constitutive/registry.hpp"
@@ -195,6 +196,52 @@ TEST(TimeStep, HypoplasticTangentBoundCoversTheRateAlongEveryInPlaneDirection) {
     EXPECT_LT(e.tangent_bound, 1.01 * largest);
     EXPECT_GT(largest, 2.0 * isotropic);
   }
+}
+
+/// The 12 x 8 block of hypoplastic sand at -p I, compressed uniformly at `rate` (1/s) about its
+/// centre; returns the first step's dt and whether the stress-increment limit set it.
+std::pair<double, long> compressed_sand_step(double rate, double limit) {
+  const double p = 1000.0;  // Pa
+  Particles particles = block(12, 8);
+  particles.internal.width = 1;
+  particles.internal.values.assign(particles.size(), 0.0);
+  const Vec2 centre(6.0 * kSpacing, 4.0 * kSpacing);
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    particles.stress[k] = -p * Mat3::Identity();
+    particles.velocity[k] = -rate * (particles.position[k] - centre);
+  }
+  EspfemSetup s = setup(0.5);
+  s.models.front() = collapse_sand();
+  s.options.stress_increment_limit = limit;
+  ExplicitSolver solver(std::move(s));
+  solver.initialise(particles);
+  const double dt = solver.step(particles, 0.0);
+  return {dt, solver.counters().stress_limited_steps};
+}
+
+TEST(TimeStep, StressIncrementLimitBoundsTheStiffeningOfAFastCompressedNodeOnly) {
+  // Arrange: a linear velocity field, so every node has D = -rate I (in plane, patch test), at
+  // -p I where M = 689.2 p (HypoplasticTangentBoundIsTheIsotropicClosedForm) and |sigma| = sqrt(3)
+  // p
+  const double rate = 100.0;  // 1/s: a grain landing on the pile at 1 m/s over a spacing
+  const double limit = 0.5;
+  // Act
+  const auto [dt_fast, limited_fast] = compressed_sand_step(rate, limit);
+  const auto [dt_slow, limited_slow] = compressed_sand_step(1e-3 * rate, limit);
+  const auto [dt_pulled, limited_pulled] = compressed_sand_step(-rate, limit);
+  // Assert: dt = limit |sigma| / (M |D|) = 0.5 sqrt(3) / (689.2 sqrt(2) 100) while it is below
+  // the Gershgorin step; a slow compression keeps that step, and so does a fast extension (the
+  // stress falls: sigma : D < 0)
+  const double m_over_sigma = (3.0 * 55.6 + 171.2 + 540.9 / 3.0 + 170.9) / std::sqrt(3.0);
+  const double expected = limit / (m_over_sigma * std::sqrt(2.0) * rate);
+  std::printf("dt %.6e s (closed form %.6e s), slow compression dt %.6e s\n", dt_fast, expected,
+              dt_slow);
+  EXPECT_NEAR(dt_fast, expected, 1e-9 * expected);
+  EXPECT_EQ(limited_fast, 1);
+  EXPECT_EQ(limited_slow, 0);
+  EXPECT_GT(dt_slow, 10.0 * dt_fast);
+  EXPECT_EQ(limited_pulled, 0);
+  EXPECT_GT(dt_pulled, 10.0 * dt_fast);
 }
 
 }  // namespace
