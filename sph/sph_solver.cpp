@@ -12,6 +12,7 @@
 #include "common/solver.hpp"
 #include "common/suggest.hpp"
 #include "constitutive/objective.hpp"
+#include "sph/dummy_velocity.hpp"
 #include "sph/pair_terms.hpp"
 
 namespace duet::sph {
@@ -164,6 +165,7 @@ void SphSolver::pair_loop(const Particles& particles) {
   const double b = o.artificial_stress;
   const double dummy_volume = setup_.spacing * setup_.spacing;
   const bool sigma_max = o.wall_stress == SphWallStress::sigma_max;
+  const bool extrapolated = o.dummy_velocity == SphDummyVelocity::extrapolated;
   const Vec2 g = setup_.gravity;
   const PairData* work = work_.data();
   const SymR* work_r = work_r_.data();
@@ -278,7 +280,8 @@ void SphSolver::pair_loop(const Particles& particles) {
       if (!late.empty()) {
         // Dummy particles: density of i, volume dp^2 of its lattice, and stress sigma_max
         // (Peng 2015 eq 31: diagonal = the smallest normal stresses among i and its soil
-        // neighbours, off-diagonal = that of i) or, with Bui 2008, the stress of i.
+        // neighbours, off-diagonal = that of i) or, with Bui 2008, the stress of i; velocity
+        // the wall's or, with sph.dummy_velocity = "extrapolated", Morris 1997 / Bui 2008's.
         const double inv_rho2 = 1.0 / (rho_i * rho_i);
         const double min_xx = std::min(s.min_xx, pi.sxx * rho_i * rho_i);
         const double min_yy = std::min(s.min_yy, pi.syy * rho_i * rho_i);
@@ -294,13 +297,23 @@ void SphSolver::pair_loop(const Particles& particles) {
           r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
         }
         const double m_dummy = rho_i * dummy_volume;
-        Pair p;
-        for (const std::uint32_t j : late) {
-          if (!pair_terms(pi, work[j], rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, p)) continue;
+        const auto dummy = [&](const PairData& pj, std::int32_t wall) {
+          Pair p;
+          if (!pair_terms(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, p)) return;
           add(s, p, m_dummy, dummy_volume, 1.0);
           // reaction on the wall of the dummy
-          wall_force[work_wall[j]] -=
+          wall_force[wall] -=
               pi.m * m_dummy * Vec2(p.cxx * p.gx + p.cxy * p.gy, p.cxy * p.gx + p.cyy * p.gy);
+        };
+        if (!extrapolated) {
+          for (const std::uint32_t j : late) dummy(work[j], work_wall[j]);
+        } else {
+          WallLine line;  // pi's nearest segment of the dummy's wall
+          for (const std::uint32_t j : late) {
+            PairData pj = work[j];
+            extrapolate_dummy_velocity(pi, work_wall[j], line, pj);
+            dummy(pj, work_wall[j]);
+          }
         }
       }
       const Vec2 a = Vec2(s.ax, s.ay) + g + external_force_[i] / pi.m;  // eq 30: + g
@@ -328,6 +341,21 @@ void SphSolver::pair_loop(const Particles& particles) {
     }
   }
   acceleration_max_ = std::sqrt(a_max2);
+}
+
+void SphSolver::extrapolate_dummy_velocity(const PairData& pi, int wall, WallLine& line,
+                                           PairData& pj) const {
+  // Morris 1997 / Bui 2008 (sph/dummy_velocity.hpp): v_B = v_w - (d_B / d_A)(v_A - v_w), the
+  // dummy's own velocity being its wall's. The nearest segment is found once per wall and soil
+  // particle (rows keep a wall's dummies together, so usually once per particle).
+  const Vec2 x_a(pi.x, pi.y);
+  if (line.wall != wall) {
+    line = nearest_wall_line(geometry_[static_cast<std::size_t>(wall)], wall, x_a);
+  }
+  const Vec2 v = extrapolated_dummy_velocity(Vec2(pi.vx, pi.vy), Vec2(pj.vx, pj.vy), line.distance,
+                                             distance_behind(line, Vec2(pj.x, pj.y)));
+  pj.vx = v.x();
+  pj.vy = v.y();
 }
 
 double SphSolver::time_step() const {

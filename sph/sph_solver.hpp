@@ -14,6 +14,7 @@
 #include "common/tensor.hpp"
 #include "common/timers.hpp"
 #include "constitutive/model.hpp"
+#include "sph/dummy_velocity.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbours.hpp"
 #include "sph/pair_terms.hpp"
@@ -26,7 +27,8 @@ namespace duet::sph {
 /// beta, artificial stress b, CFL number, sound speed, dummy layers, dummy-particle stress
 /// (sigma-max: Peng 2015 eq 31; bui: the stress of the interacting soil particle), integrator
 /// (verlet: Peng 2015 eqs 32-35 with the constitutive rate form; leapfrog: kick, drift and the
-/// incremental objective update with return mapping), continuity (simhypo-sand eq 24).
+/// incremental objective update with return mapping), continuity (simhypo-sand eq 24), dummy
+/// velocity (wall: Peng 2015 section 4.2; extrapolated: Morris 1997 / Bui 2008).
 struct SphSetup {
   duet::SphOptions options;
   double spacing = 0.0;                                      // dp, m
@@ -108,6 +110,10 @@ class SphSolver {
   void rebuild_neighbours(const Particles& particles);
   void pair_loop(const Particles& particles);
   double time_step() const;
+  /// sph.dummy_velocity = "extrapolated": replaces the velocity of dummy pj (of wall `wall`) seen
+  /// from soil particle pi by Morris 1997 / Bui 2008's (sph/dummy_velocity.hpp); `line` caches
+  /// pi's nearest segment of that wall between calls.
+  void extrapolate_dummy_velocity(const PairData& pi, int wall, WallLine& line, PairData& pj) const;
   /// Leapfrog: v += dt a, x += dt v.
   void kick_drift(Particles& particles, double dt);
   /// Leapfrog: velocity gradient and density rate of the velocities after kick_drift

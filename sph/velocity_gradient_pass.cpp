@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sph/dummy_velocity.hpp"
 #include "sph/pair_terms.hpp"
 #include "sph/sph_solver.hpp"
 
@@ -34,6 +35,8 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
   const double tiny = std::numeric_limits<double>::min();
   const double dummy_volume = setup_.spacing * setup_.spacing;
   const PairData* work = work_.data();
+  const std::int32_t* work_wall = work_wall_.data();
+  const bool extrapolated = setup_.options.dummy_velocity == SphDummyVelocity::extrapolated;
   const bool parallel = n >= kParallelMin;
   int team = 1;
 
@@ -75,9 +78,20 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
         add(s, p, pj.m, pj.vol);
         if (j < n) add(sum[j], p, pi.m, pi.vol);
       }
-      // Dummy particles: mass rho_i dp^2, volume dp^2, the wall's velocity.
-      for (const std::uint32_t j : neighbours_.late(k)) {
-        if (pair_terms(pi, work[j], p)) add(s, p, pi.rho * dummy_volume, dummy_volume);
+      // Dummy particles: mass rho_i dp^2, volume dp^2, the wall's velocity or the extrapolated
+      // one (Morris 1997 / Bui 2008, as in pair_loop).
+      const double m_dummy = pi.rho * dummy_volume;
+      if (!extrapolated) {
+        for (const std::uint32_t j : neighbours_.late(k)) {
+          if (pair_terms(pi, work[j], p)) add(s, p, m_dummy, dummy_volume);
+        }
+      } else {
+        WallLine line;  // pi's nearest segment of the dummy's wall
+        for (const std::uint32_t j : neighbours_.late(k)) {
+          PairData pj = work[j];
+          extrapolate_dummy_velocity(pi, work_wall[j], line, pj);
+          if (pair_terms(pi, pj, p)) add(s, p, m_dummy, dummy_volume);
+        }
       }
       sum[k] += s;
     }
