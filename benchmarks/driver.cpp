@@ -11,6 +11,7 @@
 #include "benchmarks/material_points.hpp"
 #include "benchmarks/reports.hpp"
 #include "common/h5_writer.hpp"
+#include "common/kinetic_energy.hpp"
 #include "common/lattice.hpp"
 #include "common/measures.hpp"
 #include "common/progress.hpp"
@@ -77,6 +78,8 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   double next_sample = sample_interval;
 
   const StateChecks checks(scene);
+  KineticEnergyRecord energy;
+  energy.record(time, kinetic_energy(particles));
   while (time < end_time * (1.0 - 1e-12) && !failure) {
     previous_position = particles.position;
     const double previous_time = time;
@@ -84,6 +87,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       const double dt = solver->step(scene, particles, time);
       time += dt;
       ++steps;
+      energy.record(time, kinetic_energy(particles));
     } catch (const NumericalFailure& e) {
       failure = Failure{e.what(), time, e.particle()};
       if (e.particle() >= 0 && static_cast<std::size_t>(e.particle()) < particles.size()) {
@@ -134,6 +138,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   timing["output"] = output_timers.seconds(Phase::output);
   metrics["timing"] = timing;
   metrics["diagnostics"] = solver->diagnostics();
+  metrics["kinetic_energy"] = energy.to_json();
   metrics["commit"] = source_commit();
   metrics["scene_file"] = scene.path;
   write_json(options.out_dir + "/metrics.json", metrics);
