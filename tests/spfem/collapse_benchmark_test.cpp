@@ -35,10 +35,10 @@ TEST(CollapseBenchmark, SandColumnSlumpsWithoutCrossingTheFloor) {
   EXPECT_LT(run.measures.at("height"), 0.1);
 }
 
-// Disabled: the target, not met at any resolution that runs under a minute. Measured
-// with the boundary layer (every-step remesh, run-out at 2 dp thickness): 0.2851 m at dp = 1 cm
-// (20.8 % short of 0.36 m; 0.2796 m, 22.3 %, without the layer), 0.2930 m at dp = 5 mm (18.6 %
-// short, 96 s wall). Kept unchanged as the target; see spfem/README.md.
+// Disabled: the target is met at dp = 2 mm (0.3223 m, -10.5 %, 2,124 s with the scene's
+// Gershgorin step and stress-increment limit) and not at a resolution that runs under a minute:
+// 0.2850 m at dp = 1 cm (-20.8 %), about 0.30 m at 5 mm (-16 to -18 %), 0.3079 m at 3.5 mm
+// (-14.5 %, 97 s). Kept as the target at the smoke resolution; see spfem/README.md.
 TEST(CollapseBenchmark, DISABLED_RunOutWithinFifteenPercentOfLubeLaw) {
   // Arrange / Act
   const RunSummary run = run_collapse();
