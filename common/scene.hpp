@@ -211,6 +211,10 @@ struct SpfemOptions {
   // Stabilisation of nodal integration: weight of the smoothed-strain stabilisation term
   // (0 = pure node-based smoothing as in the slides; 0.1 is a common NS-FEM choice).
   double stabilisation = 0.0;
+  // Stiffness (hourglass-type) stabilisation of nodal integration, s_k (-): the energy
+  // 1/2 (A0_e / 3) s_k M_e |F_e - Fbar_k|^2 per triangle and node
+  // (spfem/stiffness_stabilisation.hpp); 0 = off.
+  double stiffness_stabilisation = 0.0;
   Remesh remesh = Remesh::every_step;
   double remesh_angle = 15.0;  // deg
   // The particles are cell-centred (shared with SPH), so the alpha shape lies dp/2 inside the

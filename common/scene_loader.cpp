@@ -43,10 +43,11 @@ const std::vector<std::string> kSphKeys = {
     "kernel",     "h_over_dp",   "alpha",          "beta",         "artificial_stress",
     "cfl",        "sound_speed", "wall_treatment", "dummy_layers", "wall_stress",
     "integrator", "continuity",  "dummy_velocity"};
-const std::vector<std::string> kSpfemKeys = {"alpha_factor",  "time_step_safety",      "damping",
-                                             "local_damping", "stabilisation",         "remesh",
-                                             "remesh_angle",  "boundary_layer",        "time_step",
-                                             "implicit",      "stress_increment_limit"};
+const std::vector<std::string> kSpfemKeys = {
+    "alpha_factor",  "time_step_safety",       "damping",
+    "local_damping", "stabilisation",          "remesh",
+    "remesh_angle",  "boundary_layer",         "time_step",
+    "implicit",      "stress_increment_limit", "stiffness_stabilisation"};
 const std::vector<std::string> kImplicitKeys = {"tolerance", "max_iterations", "load_steps",
                                                 "max_step_cuts"};
 
@@ -401,6 +402,8 @@ SpfemOptions read_spfem(SectionReader& r) {
                              in_closed(0.0, 1.0, "a local damping coefficient (-)"));
   o.stabilisation =
       r.number("stabilisation", o.stabilisation, non_negative("a stabilisation weight (-)"));
+  o.stiffness_stabilisation = r.number("stiffness_stabilisation", o.stiffness_stabilisation,
+                                       non_negative("a stiffness stabilisation coefficient (-)"));
   o.stress_increment_limit = r.number("stress_increment_limit", o.stress_increment_limit,
                                       non_negative("a relative stress increment per step (-)"));
   o.remesh = r.choice("remesh", {"every-step", "angle"}, "every-step") == "every-step"

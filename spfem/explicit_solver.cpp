@@ -69,6 +69,9 @@ ExplicitSolver::ExplicitSolver(EspfemSetup setup) : setup_(std::move(setup)) {
   if (!(setup_.spacing > 0.0)) throw InputError("spfem: particle spacing must be > 0 m");
   if (!(o.alpha_factor > 0.0)) throw InputError("spfem.alpha_factor must be > 0");
   if (!(o.time_step_safety > 0.0)) throw InputError("spfem.time_step_safety must be > 0");
+  if (!(o.stiffness_stabilisation >= 0.0)) {
+    throw InputError("spfem.stiffness_stabilisation must be >= 0");
+  }
 }
 
 void ExplicitSolver::initialise(Particles& particles) {
@@ -95,6 +98,9 @@ void ExplicitSolver::initialise(Particles& particles) {
   stiffening_.assign(n, 0.0);
   internal_force_.assign(n, Vec2::Zero());
   stabilisation_force_.assign(n, Vec2::Zero());
+  stiffness_force_.assign(n, Vec2::Zero());
+  reference_position_.assign(n, Vec2::Zero());
+  stiffness_energy_ = 0.0;
   external_force_.assign(n, Vec2::Zero());
   scratch_stress_.assign(n, Mat3::Zero());
   scratch_force_.assign(n, Vec2::Zero());
@@ -132,21 +138,8 @@ void ExplicitSolver::update_mesh(const Particles& particles) {
     build_alpha_mesh(x, o.alpha_factor * setup_.spacing, mesh_);
     have_mesh_ = true;
     ++counters_.remeshes;
-    // Node -> triangle rows (counting sort), for race-free gathers of per-triangle terms.
-    const std::size_t n = x.size();
-    node_triangle_offset_.assign(n + 1, 0);
-    for (const Triangle& t : mesh_.triangles) {
-      for (const std::int32_t a : t) ++node_triangle_offset_[static_cast<std::size_t>(a) + 1];
-    }
-    for (std::size_t i = 0; i < n; ++i) node_triangle_offset_[i + 1] += node_triangle_offset_[i];
-    node_triangle_.resize(3 * mesh_.triangles.size());
-    std::vector<std::int32_t> fill(node_triangle_offset_.begin(), node_triangle_offset_.end() - 1);
-    for (std::size_t e = 0; e < mesh_.triangles.size(); ++e) {
-      for (const std::int32_t a : mesh_.triangles[e]) {
-        node_triangle_[static_cast<std::size_t>(fill[static_cast<std::size_t>(a)]++)] =
-            static_cast<std::int32_t>(e);
-      }
-    }
+    // Node -> triangle rows, for race-free gathers of per-triangle terms.
+    build_node_triangles(mesh_.triangles, x.size(), node_triangles_);
     counters_.triangles = mesh_.triangles.size();
     counters_.components = mesh_.n_components;
     counters_.surface_nodes = static_cast<std::size_t>(
@@ -348,8 +341,9 @@ void ExplicitSolver::add_stabilisation(const Particles& particles) {
   for (std::size_t l = 0; l < n; ++l) {
     Vec2 f = Vec2::Zero();
     Mat2 s_l = Mat2::Zero();
-    for (std::int32_t r = node_triangle_offset_[l]; r < node_triangle_offset_[l + 1]; ++r) {
-      const auto e = static_cast<std::size_t>(node_triangle_[static_cast<std::size_t>(r)]);
+    for (std::int32_t r = node_triangles_.offset[l]; r < node_triangles_.offset[l + 1]; ++r) {
+      const auto e =
+          static_cast<std::size_t>(node_triangles_.triangle[static_cast<std::size_t>(r)]);
       const Triangle& t = mesh_.triangles[e];
       const std::size_t k = t[0] == static_cast<std::int32_t>(l)   ? 0
                             : t[1] == static_cast<std::int32_t>(l) ? 1
@@ -373,6 +367,22 @@ void ExplicitSolver::assemble_forces(const Particles& particles) {
     add_stabilisation(particles);
   } else {
     std::fill(stabilisation_force_.begin(), stabilisation_force_.end(), Vec2::Zero());
+  }
+  stiffness_energy_ = 0.0;
+  if (setup_.options.stiffness_stabilisation > 0.0 && !mesh_.triangles.empty()) {
+    // Stiffness stabilisation on the nodes' initial positions x - u (the displacement is
+    // measured from the start of the run, after any gravity loading)
+    const std::size_t n = particles.size();
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+    for (std::size_t i = 0; i < n; ++i) {
+      reference_position_[i] = particles.position[i] - particles.displacement[i];
+    }
+    stiffness_energy_ = stiffness_stabilisation_forces(
+        mesh_.triangles, node_triangles_, reference_position_, particles.position, block_modulus_,
+        setup_.options.stiffness_stabilisation, stiffness_scratch_, stiffness_force_);
+    // stabilisation_force_ is subtracted in M a = ... - F_stab, stiffness_force_ = -dW/dx acts
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+    for (std::size_t i = 0; i < n; ++i) stabilisation_force_[i] -= stiffness_force_[i];
   }
 }
 
@@ -450,7 +460,7 @@ void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
 }
 
 double ExplicitSolver::energy(const Particles& particles) const {
-  double e = 0.0;
+  double e = stiffness_energy_;
   const std::size_t n = particles.size();
 #pragma omp parallel for schedule(static) reduction(+ : e) if (n > kParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
@@ -545,6 +555,8 @@ Json ExplicitSolver::diagnostics() const {
   j["contacts_max"] = c.contacts_max;
   j["wall_strip_edges"] = static_cast<long>(wall_strips_.edges.size());
   j["stabilisation"] = setup_.options.stabilisation;
+  j["stiffness_stabilisation"] = setup_.options.stiffness_stabilisation;
+  j["stiffness_stabilisation_energy"] = stiffness_energy_;
   j["stress_limited_steps"] = c.stress_limited_steps;
   j["energy_reference"] = c.energy_reference;
   j["energy_drift_max"] = c.energy_drift_max;

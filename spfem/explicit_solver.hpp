@@ -21,13 +21,14 @@
 #include "spfem/alpha_mesh.hpp"
 #include "spfem/node_contact.hpp"
 #include "spfem/smoothing.hpp"
+#include "spfem/stiffness_stabilisation.hpp"
 #include "spfem/wall_strip.hpp"
 
 namespace duet::spfem {
 
 /// The method options are the scene's [spfem] section (common/scene.hpp): alpha_factor,
 /// time_step_safety, damping (viscous, 1/s), local_damping (Cundall, -), stabilisation (-),
-/// remesh every-step | angle, remesh_angle (deg).
+/// stiffness_stabilisation (-), remesh every-step | angle, remesh_angle (deg).
 struct EspfemSetup {
   duet::SpfemOptions options;
   double spacing = 0.0;                                      // dp, m
@@ -79,7 +80,8 @@ class ExplicitSolver {
   const AlphaMesh& mesh() const { return mesh_; }
   const SmoothingCells& cells() const { return cells_; }
   /// Kinetic energy plus 0.5 sum_k A_k sigma_k : eps_k (the stored energy of a linear elastic
-  /// body from a stress-free state), on the current mesh.
+  /// body from a stress-free state), on the current mesh, plus the stiffness stabilisation's
+  /// energy W at the positions of the last force evaluation.
   double energy(const Particles& particles) const;
   /// Counters and timings for metrics.json.
   Json diagnostics() const;
@@ -101,8 +103,7 @@ class ExplicitSolver {
   std::vector<std::size_t> n_internal_;  // per material
 
   // Node -> triangles (compressed rows), rebuilt with the mesh.
-  std::vector<std::int32_t> node_triangle_offset_;
-  std::vector<std::int32_t> node_triangle_;
+  NodeTriangles node_triangles_;
 
   std::vector<Mat2> velocity_gradient_;
   std::vector<double> wave_speed_;  // per node, m/s
@@ -118,6 +119,11 @@ class ExplicitSolver {
   std::vector<double> triangle_area_;
   std::vector<Mat2> triangle_stress_;               // stabilising stress per triangle
   std::vector<std::array<Vec2, 3>> triangle_grad_;  // grad N_a per triangle
+  // Stiffness stabilisation (spfem/stiffness_stabilisation.hpp)
+  std::vector<Vec2> reference_position_;  // x - u: the nodes' initial positions
+  std::vector<Vec2> stiffness_force_;     // -dW/dx
+  StiffnessStabilisationScratch stiffness_scratch_;
+  double stiffness_energy_ = 0.0;  // W at the last force evaluation (J/m)
 
   std::vector<BoundaryGeometry> geometry_;
   std::vector<NodeContact> contacts_;
