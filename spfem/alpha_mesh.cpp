@@ -337,4 +337,21 @@ double mesh_area(const AlphaMesh& mesh, const std::vector<Vec2>& points) {
   return area;
 }
 
+void build_node_triangles(const std::vector<Triangle>& triangles, std::size_t n_nodes,
+                          NodeTriangles& rows) {
+  rows.offset.assign(n_nodes + 1, 0);
+  for (const Triangle& t : triangles) {
+    for (const std::int32_t a : t) ++rows.offset[static_cast<std::size_t>(a) + 1];
+  }
+  for (std::size_t i = 0; i < n_nodes; ++i) rows.offset[i + 1] += rows.offset[i];
+  rows.triangle.resize(3 * triangles.size());
+  std::vector<std::int32_t> fill(rows.offset.begin(), rows.offset.end() - 1);
+  for (std::size_t e = 0; e < triangles.size(); ++e) {
+    for (const std::int32_t a : triangles[e]) {
+      rows.triangle[static_cast<std::size_t>(fill[static_cast<std::size_t>(a)]++)] =
+          static_cast<std::int32_t>(e);
+    }
+  }
+}
+
 }  // namespace duet::spfem

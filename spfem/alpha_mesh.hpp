@@ -41,4 +41,15 @@ double smallest_angle(const AlphaMesh& mesh, const std::vector<Vec2>& points);
 /// Sum of the triangle areas at `points` (m^2).
 double mesh_area(const AlphaMesh& mesh, const std::vector<Vec2>& points);
 
+/// Node -> triangles in compressed rows: triangle[offset[k] .. offset[k + 1]) are the triangles
+/// around node k, in increasing order.
+struct NodeTriangles {
+  std::vector<std::int32_t> offset;    // n_nodes + 1
+  std::vector<std::int32_t> triangle;  // 3 n_triangles
+};
+
+/// Builds the rows of `triangles` over `n_nodes` nodes (counting sort; reuses the storage).
+void build_node_triangles(const std::vector<Triangle>& triangles, std::size_t n_nodes,
+                          NodeTriangles& rows);
+
 }  // namespace duet::spfem

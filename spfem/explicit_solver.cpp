@@ -138,8 +138,6 @@ void ExplicitSolver::update_mesh(const Particles& particles) {
     build_alpha_mesh(x, o.alpha_factor * setup_.spacing, mesh_);
     have_mesh_ = true;
     ++counters_.remeshes;
-    // Node -> triangle rows, for race-free gathers of per-triangle terms.
-    build_node_triangles(mesh_.triangles, x.size(), node_triangles_);
     counters_.triangles = mesh_.triangles.size();
     counters_.components = mesh_.n_components;
     counters_.surface_nodes = static_cast<std::size_t>(
@@ -179,6 +177,8 @@ double ExplicitSolver::time_step(const Particles& particles) {
   // of either rule allowed for. Bound the relative stress increment, M / |sigma| |D| dt <= limit,
   // at the nodes being loaded (stress power sigma : D > 0); one unloading or pulled apart (a
   // surface node leaving the body, whose strain rate is largest) only softens.
+  const double limit = setup_.options.stress_increment_limit;
+  if (!(limit > 0.0)) return dt;
   const std::size_t n = velocity_gradient_.size();
   double rate = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : rate) if (n > kParallelMin)
@@ -189,8 +189,7 @@ double ExplicitSolver::time_step(const Particles& particles) {
       if ((sigma.array() * d.array()).sum() > 0.0) rate = std::max(rate, stiffening_[k] * d.norm());
     }
   }
-  const double limit = setup_.options.stress_increment_limit;
-  if (limit > 0.0 && rate * dt > limit) {
+  if (rate * dt > limit) {
     ++counters_.stress_limited_steps;
     return limit / rate;
   }
@@ -341,9 +340,10 @@ void ExplicitSolver::add_stabilisation(const Particles& particles) {
   for (std::size_t l = 0; l < n; ++l) {
     Vec2 f = Vec2::Zero();
     Mat2 s_l = Mat2::Zero();
-    for (std::int32_t r = node_triangles_.offset[l]; r < node_triangles_.offset[l + 1]; ++r) {
+    for (std::int32_t r = cells_.node_triangles.offset[l]; r < cells_.node_triangles.offset[l + 1];
+         ++r) {
       const auto e =
-          static_cast<std::size_t>(node_triangles_.triangle[static_cast<std::size_t>(r)]);
+          static_cast<std::size_t>(cells_.node_triangles.triangle[static_cast<std::size_t>(r)]);
       const Triangle& t = mesh_.triangles[e];
       const std::size_t k = t[0] == static_cast<std::int32_t>(l)   ? 0
                             : t[1] == static_cast<std::int32_t>(l) ? 1
@@ -378,8 +378,9 @@ void ExplicitSolver::assemble_forces(const Particles& particles) {
       reference_position_[i] = particles.position[i] - particles.displacement[i];
     }
     stiffness_energy_ = stiffness_stabilisation_forces(
-        mesh_.triangles, node_triangles_, reference_position_, particles.position, block_modulus_,
-        setup_.options.stiffness_stabilisation, stiffness_scratch_, stiffness_force_);
+        mesh_.triangles, cells_.node_triangles, reference_position_, particles.position,
+        block_modulus_, setup_.options.stiffness_stabilisation, stiffness_scratch_,
+        stiffness_force_);
     // stabilisation_force_ is subtracted in M a = ... - F_stab, stiffness_force_ = -dW/dx acts
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
     for (std::size_t i = 0; i < n; ++i) stabilisation_force_[i] -= stiffness_force_[i];

@@ -102,9 +102,6 @@ class ExplicitSolver {
   bool have_mesh_ = false;
   std::vector<std::size_t> n_internal_;  // per material
 
-  // Node -> triangles (compressed rows), rebuilt with the mesh.
-  NodeTriangles node_triangles_;
-
   std::vector<Mat2> velocity_gradient_;
   std::vector<double> wave_speed_;  // per node, m/s
   std::vector<double>

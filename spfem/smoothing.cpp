@@ -47,35 +47,19 @@ TriangleTerms triangle_terms(const Triangle& t, const std::vector<Vec2>& points)
   return terms;
 }
 
-// Node -> triangles adjacency in CSR: counting pass, running sum, fill pass.
-void build_adjacency(const std::vector<Triangle>& triangles, std::size_t n_nodes,
-                     SmoothingCells& cells) {
-  std::vector<Index>& start = cells.triangle_offset;
-  start.assign(n_nodes + 1, 0);
-  for (const Triangle& t : triangles) {
-    for (const Index node : t) ++start[node];
-  }
-  for (std::size_t k = 1; k <= n_nodes; ++k) start[k] += start[k - 1];  // start[k] = end of row k
-  cells.node_triangles.resize(static_cast<std::size_t>(start[n_nodes]));
-  for (std::size_t e = triangles.size(); e-- > 0;) {
-    for (const Index node : triangles[e]) cells.node_triangles[--start[node]] = Index(e);
-  }
-  // start[k] is now the start of row k and start[n_nodes] the total.
-}
-
 // Nodes other than k of the triangles around k, each counted once, searching the earlier
 // triangles (no storage: for a node of very high degree).
 Index count_neighbours_in_place(const SmoothingCells& cells, const std::vector<Triangle>& triangles,
                                 std::size_t k) {
-  const Index first = cells.triangle_offset[k];
-  const Index last = cells.triangle_offset[k + 1];
+  const Index first = cells.node_triangles.offset[k];
+  const Index last = cells.node_triangles.offset[k + 1];
   Index count = 0;
   for (Index i = first; i < last; ++i) {
-    for (const Index node : triangles[cells.node_triangles[i]]) {
+    for (const Index node : triangles[cells.node_triangles.triangle[i]]) {
       if (node == Index(k)) continue;
       bool seen = false;
       for (Index j = first; j < i && !seen; ++j) {
-        const Triangle& earlier = triangles[cells.node_triangles[j]];
+        const Triangle& earlier = triangles[cells.node_triangles.triangle[j]];
         seen = earlier[0] == node || earlier[1] == node || earlier[2] == node;
       }
       if (!seen) ++count;
@@ -90,8 +74,8 @@ constexpr Index kLocalNeighbours = 48;
 
 Index row_length(const SmoothingCells& cells, const std::vector<Triangle>& triangles,
                  std::size_t k) {
-  const Index first = cells.triangle_offset[k];
-  const Index last = cells.triangle_offset[k + 1];
+  const Index first = cells.node_triangles.offset[k];
+  const Index last = cells.node_triangles.offset[k + 1];
   if (first == last) return 0;
   if (2 * (last - first) > kLocalNeighbours) {
     return 1 + count_neighbours_in_place(cells, triangles, k);
@@ -99,7 +83,7 @@ Index row_length(const SmoothingCells& cells, const std::vector<Triangle>& trian
   std::array<Index, kLocalNeighbours> seen;
   Index n_seen = 0;
   for (Index i = first; i < last; ++i) {
-    for (const Index node : triangles[cells.node_triangles[i]]) {
+    for (const Index node : triangles[cells.node_triangles.triangle[i]]) {
       if (node == Index(k)) continue;
       Index j = 0;
       while (j < n_seen && seen[j] != node) ++j;
@@ -114,8 +98,8 @@ Index row_length(const SmoothingCells& cells, const std::vector<Triangle>& trian
 bool is_surface_edge(const SmoothingCells& cells, const std::vector<Triangle>& triangles,
                      std::size_t k, Index node) {
   int count = 0;
-  for (Index i = cells.triangle_offset[k]; i < cells.triangle_offset[k + 1]; ++i) {
-    const Triangle& t = triangles[cells.node_triangles[i]];
+  for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
+    const Triangle& t = triangles[cells.node_triangles.triangle[i]];
     if (t[0] == node || t[1] == node || t[2] == node) ++count;
   }
   return count == 1;
@@ -180,8 +164,8 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   int n_outgoing = 0;
   int n_walled = 0;         // surface edges at k that own a wall strip
   double wall_wedge = 0.0;  // wedge carried by the wall strips at k
-  for (Index i = cells.triangle_offset[k]; i < cells.triangle_offset[k + 1]; ++i) {
-    const Triangle& t = triangles[cells.node_triangles[i]];
+  for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
+    const Triangle& t = triangles[cells.node_triangles.triangle[i]];
     const TriangleTerms terms = triangle_terms(t, points);
     plain_area += terms.area / 3.0;  // papers/004 "Strain smoothing": A^(k) = (1/3) sum A_e^j
     // Weight of grad N^e in this row: A_e / 3, plus the strips of e's surface edges at k
@@ -232,8 +216,8 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   if (spread != 0.0 && well_area > 0.0) {
     // spread x the gradient smoothed over the well-shaped triangles:
     // sum_e (spread / well_area) (A_e / 3) grad N^e
-    for (Index i = cells.triangle_offset[k]; i < cells.triangle_offset[k + 1]; ++i) {
-      const Triangle& t = triangles[cells.node_triangles[i]];
+    for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
+      const Triangle& t = triangles[cells.node_triangles.triangle[i]];
       const TriangleTerms terms = triangle_terms(t, points);
       if (2.0 * terms.area >= depth * longest_edge(t, points)) {
         add_to_row(t, terms, spread / well_area, row_begin, row_end, cells);
@@ -264,7 +248,7 @@ void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& point
                            SmoothingCells& cells, double layer_depth, const WallStrips* walls) {
   const std::size_t n_nodes = points.size();
   const std::vector<Triangle>& triangles = mesh.triangles;
-  build_adjacency(triangles, n_nodes, cells);
+  build_node_triangles(triangles, n_nodes, cells.node_triangles);
 
   // Counting pass: row k holds k and its distinct neighbours (none for a node in no triangle).
   cells.offset.resize(n_nodes + 1);

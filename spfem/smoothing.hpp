@@ -29,9 +29,9 @@ struct SmoothingCells {
   std::vector<std::int32_t> wall_column;  // wall point w of each entry
   std::vector<Vec2> wall_gradient;        // c_kw (1/m)
   std::vector<Vec2> wall_velocity;        // v_w (m/s) per wall point, copied from the strips
-  // Node -> triangles adjacency (CSR), built first and kept so its storage is reused each step.
-  std::vector<std::int32_t> triangle_offset;  // n_nodes + 1 starts into node_triangles
-  std::vector<std::int32_t> node_triangles;   // indices into mesh.triangles around each node
+  // Node -> triangles adjacency (CSR), built first and kept so its storage is reused each step;
+  // the explicit solver's per-triangle gathers read it too.
+  NodeTriangles node_triangles;
 };
 
 /// Builds the cells of `mesh` at the current `points`. Reuses the storage of `cells`.

@@ -96,23 +96,6 @@ double node_terms(const std::vector<Triangle>& triangles, const NodeTriangles& r
 
 }  // namespace
 
-void build_node_triangles(const std::vector<Triangle>& triangles, std::size_t n_nodes,
-                          NodeTriangles& rows) {
-  rows.offset.assign(n_nodes + 1, 0);
-  for (const Triangle& t : triangles) {
-    for (const std::int32_t a : t) ++rows.offset[static_cast<std::size_t>(a) + 1];
-  }
-  for (std::size_t i = 0; i < n_nodes; ++i) rows.offset[i + 1] += rows.offset[i];
-  rows.triangle.resize(3 * triangles.size());
-  std::vector<std::int32_t> fill(rows.offset.begin(), rows.offset.end() - 1);
-  for (std::size_t e = 0; e < triangles.size(); ++e) {
-    for (const std::int32_t a : triangles[e]) {
-      rows.triangle[static_cast<std::size_t>(fill[static_cast<std::size_t>(a)]++)] =
-          static_cast<std::int32_t>(e);
-    }
-  }
-}
-
 double stiffness_stabilisation_energy(const std::vector<Triangle>& triangles,
                                       const NodeTriangles& rows, const std::vector<Vec2>& reference,
                                       const std::vector<Vec2>& position,

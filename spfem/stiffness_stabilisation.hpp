@@ -34,17 +34,6 @@
 
 namespace duet::spfem {
 
-/// Node -> triangles in compressed rows: triangle[offset[k] .. offset[k + 1]) are the triangles
-/// around node k.
-struct NodeTriangles {
-  std::vector<std::int32_t> offset;    // n_nodes + 1
-  std::vector<std::int32_t> triangle;  // 3 n_triangles
-};
-
-/// Builds the rows of `triangles` over `n_nodes` nodes (counting sort; reuses the storage).
-void build_node_triangles(const std::vector<Triangle>& triangles, std::size_t n_nodes,
-                          NodeTriangles& rows);
-
 /// Per-triangle and per-node terms, kept between calls so their storage is reused.
 struct StiffnessStabilisationScratch {
   std::vector<Mat2> deformation_gradient;               // F_e
