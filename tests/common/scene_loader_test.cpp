@@ -121,6 +121,30 @@ TEST(SceneLoader, OverrideOfAModelParameterIsCheckedByTheModel) {
   EXPECT_EQ(message.rfind("--set material.sand.nu=0.62: ", 0), 0u) << message;
 }
 
+TEST(SceneLoader, DummyVelocityDefaultsToTheWallsAndReadsExtrapolated) {
+  EXPECT_EQ(load_scene_from_string(kScene, "scene.toml").sph.dummy_velocity,
+            SphDummyVelocity::wall);
+  EXPECT_EQ(load_scene_from_string(kScene, "scene.toml", {"sph.dummy_velocity=extrapolated"})
+                .sph.dummy_velocity,
+            SphDummyVelocity::extrapolated);
+}
+
+TEST(SceneLoader, UnknownDummyVelocityIsRefusedNamingTheChoices) {
+  const std::string message = refusal(kScene, {"sph.dummy_velocity=extrapolate"});
+  EXPECT_NE(message.find("sph.dummy_velocity"), std::string::npos) << message;
+  EXPECT_NE(message.find("wall, extrapolated"), std::string::npos) << message;
+}
+
+TEST(SceneLoader, StiffnessStabilisationDefaultsToOffAndANegativeValueIsRefused) {
+  EXPECT_DOUBLE_EQ(load_scene_from_string(kScene, "scene.toml").spfem.stiffness_stabilisation, 0.0);
+  EXPECT_DOUBLE_EQ(
+      load_scene_from_string(kScene, "scene.toml", {"spfem.stiffness_stabilisation=0.5"})
+          .spfem.stiffness_stabilisation,
+      0.5);
+  const std::string message = refusal(kScene, {"spfem.stiffness_stabilisation=-1"});
+  EXPECT_NE(message.find("spfem.stiffness_stabilisation"), std::string::npos) << message;
+}
+
 TEST(SceneLoader, UnknownKeyNamesFileLineKeyAndSuggestion) {
   std::string text = kScene;
   text.replace(text.find("min = [0.0, 0.0]"), 16, "mni = [0.0, 0.0]");

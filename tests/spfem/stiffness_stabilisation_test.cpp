@@ -1,7 +1,8 @@
 // Tests of the stiffness stabilisation of nodal integration (spfem/stiffness_stabilisation.hpp):
 // zero for affine deformations and rigid rotations (patch test, objectivity), the force is
 // -dW/dx (central differences), momentum and angular momentum are conserved, and a mode that the
-// node-based smoothing cannot see (checkerboard on a lattice) costs energy. Also the scene key.
+// node-based smoothing cannot see (checkerboard on a lattice) costs energy (the scene key:
+// tests/common/scene_loader_test.cpp).
 #include "spfem/stiffness_stabilisation.hpp"
 
 #include <gtest/gtest.h>
@@ -13,8 +14,6 @@
 #include <string>
 #include <vector>
 
-#include "common/input_error.hpp"
-#include "common/scene_loader.hpp"
 #include "spfem/smoothing.hpp"
 #include "tests/spfem/delaunay_mesh.hpp"
 
@@ -228,20 +227,6 @@ TEST(StiffnessStabilisation, CheckerboardModeThatSmoothingCannotSeeCostsEnergy) 
   EXPECT_LT(interior, 1e-12);
   EXPECT_GT(w, 0.5 * full);
   EXPECT_LE(w, full * (1.0 + 1e-12));
-}
-
-TEST(StiffnessStabilisation, SceneKeyIsReadAndANegativeValueRefused) {
-  const std::string scene = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/bar.toml";
-  EXPECT_DOUBLE_EQ(load_scene(scene).spfem.stiffness_stabilisation, 0.0);
-  EXPECT_DOUBLE_EQ(
-      load_scene(scene, {"spfem.stiffness_stabilisation=0.5"}).spfem.stiffness_stabilisation, 0.5);
-  std::string message;
-  try {
-    load_scene(scene, {"spfem.stiffness_stabilisation=-1"});
-  } catch (const InputError& e) {
-    message = e.what();
-  }
-  EXPECT_NE(message.find("spfem.stiffness_stabilisation"), std::string::npos) << message;
 }
 
 }  // namespace

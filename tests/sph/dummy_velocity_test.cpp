@@ -1,14 +1,10 @@
 // The extrapolated velocity of a no-slip dummy particle (sph/dummy_velocity.hpp, Morris 1997 /
 // Bui 2008): v_B = v_w - (d_B / d_A)(v_A - v_w) below the cap beta = 1 + d_B / d_A <= 1.5, the
-// cap above it, the wall line seen from a soil particle, and the scene key that selects it.
+// cap above it, and the wall line seen from a soil particle (the scene key that selects it:
+// tests/common/scene_loader_test.cpp).
 #include "sph/dummy_velocity.hpp"
 
 #include <gtest/gtest.h>
-
-#include <string>
-
-#include "common/input_error.hpp"
-#include "common/scene_loader.hpp"
 
 namespace duet::sph {
 namespace {
@@ -100,47 +96,6 @@ TEST(DummyVelocity, TheNearestSegmentDecidesTheWallLine) {
   EXPECT_NEAR(line.normal.x(), 1.0, 1e-15);
   EXPECT_NEAR(line.distance, kDp, 1e-15);
   EXPECT_NEAR(distance_behind(line, Vec2(-1.5 * kDp, 9.0 * kDp)), 1.5 * kDp, 1e-15);
-}
-
-const std::string kScene = R"(name = "column"
-spacing = 0.01
-gravity = [0.0, -9.81]
-
-[time]
-end_time = 0.5
-
-[material.sand]
-model = "linear-elastic"
-density = 1800.0
-E = 1.0e6
-nu = 0.3
-
-[body.column]
-material = "sand"
-min = [0.0, 0.0]
-max = [0.2, 0.1]
-
-[wall.floor]
-points = [[0.0, 0.0], [0.6, 0.0]]
-)";
-
-TEST(DummyVelocityKey, DefaultsToTheWallVelocityAndReadsExtrapolated) {
-  EXPECT_EQ(load_scene_from_string(kScene, "scene.toml").sph.dummy_velocity,
-            SphDummyVelocity::wall);
-  EXPECT_EQ(load_scene_from_string(kScene, "scene.toml", {"sph.dummy_velocity=extrapolated"})
-                .sph.dummy_velocity,
-            SphDummyVelocity::extrapolated);
-}
-
-TEST(DummyVelocityKey, AnUnknownChoiceIsAnInputErrorNamingTheChoices) {
-  std::string message;
-  try {
-    load_scene_from_string(kScene, "scene.toml", {"sph.dummy_velocity=extrapolate"});
-  } catch (const InputError& e) {
-    message = e.what();
-  }
-  EXPECT_NE(message.find("sph.dummy_velocity"), std::string::npos) << message;
-  EXPECT_NE(message.find("wall, extrapolated"), std::string::npos) << message;
 }
 
 }  // namespace
