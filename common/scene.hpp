@@ -217,6 +217,9 @@ struct SpfemOptions {
   double stiffness_stabilisation = 0.0;
   Remesh remesh = Remesh::every_step;
   double remesh_angle = 15.0;  // deg
+  // remesh = angle: a triangle's limit is min(remesh_angle, fraction x its angle at the last
+  // remesh) (spfem/remesh_trigger.hpp); 0 = remesh_angle for every triangle.
+  double remesh_angle_fraction = 0.0;
   // The particles are cell-centred (shared with SPH), so the alpha shape lies dp/2 inside the
   // material; true: each surface node's smoothing cell is extended over that dp/2 layer.
   bool boundary_layer = true;

@@ -43,11 +43,19 @@ const std::vector<std::string> kSphKeys = {
     "kernel",     "h_over_dp",   "alpha",          "beta",         "artificial_stress",
     "cfl",        "sound_speed", "wall_treatment", "dummy_layers", "wall_stress",
     "integrator", "continuity",  "dummy_velocity"};
-const std::vector<std::string> kSpfemKeys = {
-    "alpha_factor",  "time_step_safety",       "damping",
-    "local_damping", "stabilisation",          "remesh",
-    "remesh_angle",  "boundary_layer",         "time_step",
-    "implicit",      "stress_increment_limit", "stiffness_stabilisation"};
+const std::vector<std::string> kSpfemKeys = {"alpha_factor",
+                                             "time_step_safety",
+                                             "damping",
+                                             "local_damping",
+                                             "stabilisation",
+                                             "remesh",
+                                             "remesh_angle",
+                                             "boundary_layer",
+                                             "time_step",
+                                             "implicit",
+                                             "stress_increment_limit",
+                                             "stiffness_stabilisation",
+                                             "remesh_angle_fraction"};
 const std::vector<std::string> kImplicitKeys = {"tolerance", "max_iterations", "load_steps",
                                                 "max_step_cuts"};
 
@@ -410,6 +418,9 @@ SpfemOptions read_spfem(SectionReader& r) {
                  ? Remesh::every_step
                  : Remesh::angle;
   o.remesh_angle = r.number("remesh_angle", o.remesh_angle, in_closed(0.0, 90.0, "an angle (deg)"));
+  o.remesh_angle_fraction =
+      r.number("remesh_angle_fraction", o.remesh_angle_fraction,
+               in_closed(0.0, 1.0, "a fraction of a triangle's angle at its remesh (-)"));
   o.boundary_layer = r.boolean("boundary_layer", o.boundary_layer);
   r.finish({"implicit"});
   return o;

@@ -126,13 +126,10 @@ void ExplicitSolver::update_mesh(const Particles& particles) {
   bool remesh = !have_mesh_ || o.remesh == Remesh::every_step;
   double angle = 180.0;  // smallest angle of the kept mesh at x (when it was measured)
   if (!remesh) {
-    // Remesh on angle: keep the connectivity while the smallest angle stays above the threshold;
-    // an inverted triangle (negative angle) always forces a new mesh.
-    angle = smallest_angle(mesh_, x);
-    if (angle < o.remesh_angle) {
-      remesh = true;
-      if (angle <= 0.0) ++counters_.forced_remeshes;
-    }
+    // Remesh on angle (spfem/remesh_trigger.hpp): keep the connectivity while every triangle
+    // stays above its limit; an inverted triangle always forces a new mesh.
+    remesh = remesh_due(mesh_, x, remesh_trigger_, angle);
+    if (remesh && angle <= 0.0) ++counters_.forced_remeshes;
   }
   if (remesh) {
     build_alpha_mesh(x, o.alpha_factor * setup_.spacing, mesh_);
@@ -163,7 +160,11 @@ void ExplicitSolver::update_mesh(const Particles& particles) {
   } else {
     refill_smoothing_cells(mesh_, x, cells_, layer, strips);  // same triangles: same rows
   }
-  if (remesh && !mesh_.triangles.empty()) angle = smallest_angle(mesh_, x);
+  if (remesh && o.remesh == Remesh::angle) {
+    angle = arm_remesh_trigger(mesh_, x, o.remesh_angle, o.remesh_angle_fraction, remesh_trigger_);
+  } else if (remesh && !mesh_.triangles.empty()) {
+    angle = smallest_angle(mesh_, x);
+  }
   counters_.smallest_angle = std::min(counters_.smallest_angle, angle);
 }
 
@@ -546,6 +547,8 @@ Json ExplicitSolver::diagnostics() const {
   j["remeshes"] = c.remeshes;
   j["forced_remeshes"] = c.forced_remeshes;
   j["remesh"] = to_string(setup_.options.remesh);
+  j["remesh_angle"] = setup_.options.remesh_angle;
+  j["remesh_angle_fraction"] = setup_.options.remesh_angle_fraction;
   j["triangles"] = static_cast<long>(c.triangles);
   j["surface_nodes"] = static_cast<long>(c.surface_nodes);
   j["components"] = static_cast<long>(c.components);

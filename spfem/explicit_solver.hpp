@@ -20,6 +20,7 @@
 #include "constitutive/model.hpp"
 #include "spfem/alpha_mesh.hpp"
 #include "spfem/node_contact.hpp"
+#include "spfem/remesh_trigger.hpp"
 #include "spfem/smoothing.hpp"
 #include "spfem/stiffness_stabilisation.hpp"
 #include "spfem/wall_strip.hpp"
@@ -28,7 +29,8 @@ namespace duet::spfem {
 
 /// The method options are the scene's [spfem] section (common/scene.hpp): alpha_factor,
 /// time_step_safety, damping (viscous, 1/s), local_damping (Cundall, -), stabilisation (-),
-/// stiffness_stabilisation (-), remesh every-step | angle, remesh_angle (deg).
+/// stiffness_stabilisation (-), remesh every-step | angle, remesh_angle (deg),
+/// remesh_angle_fraction (-).
 struct EspfemSetup {
   duet::SpfemOptions options;
   double spacing = 0.0;                                      // dp, m
@@ -99,6 +101,7 @@ class ExplicitSolver {
   EspfemSetup setup_;
   AlphaMesh mesh_;
   SmoothingCells cells_;
+  RemeshTrigger remesh_trigger_;  // remesh = angle: the limits of the kept triangles
   bool have_mesh_ = false;
   std::vector<std::size_t> n_internal_;  // per material
 

@@ -30,11 +30,6 @@ double cross(const Vec2& a, const Vec2& b) {
 // turn counter-clockwise, over 2 A_e (it points from edge bc towards a, length 1 / height).
 // What a triangle adds to b_kl A_k is (A_e / 3) grad N_l^e = quarter_turn(opposite edge of l) / 6:
 // the area cancels.
-struct TriangleTerms {
-  double area = 0.0;                      // A_e (m^2)
-  std::array<Vec2, 3> weighted_gradient;  // (A_e / 3) grad N_corner^e (m)
-};
-
 TriangleTerms triangle_terms(const Triangle& t, const std::vector<Vec2>& points) {
   const Vec2& a = points[t[0]];
   const Vec2& b = points[t[1]];
@@ -112,20 +107,34 @@ double longest_edge(const Triangle& t, const std::vector<Vec2>& points) {
   return std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
 }
 
-// Adds factor x (A_e / 3) grad N_l^e for the three corners l of t to row k (entries found or
-// appended between row_begin and row_end).
-void add_to_row(const Triangle& t, const TriangleTerms& terms, double factor, Index row_begin,
-                Index& row_end, SmoothingCells& cells) {
+// Adds factor x (A_e / 3) grad N_l^e for the three corners l of a triangle to their entries of
+// one row (SmoothingCells::corner_entry).
+void add_terms(const TriangleTerms& terms, double factor, const std::array<Index, 3>& entries,
+               SmoothingCells& cells) {
   for (int corner = 0; corner < 3; ++corner) {
-    Index entry = row_begin;
-    while (entry < row_end && cells.column[entry] != t[corner]) ++entry;
-    if (entry == row_end) {
-      cells.column[entry] = t[corner];
-      cells.gradient[entry].setZero();
-      ++row_end;
-    }
-    cells.gradient[entry] += factor * terms.weighted_gradient[corner];
+    cells.gradient[entries[corner]] += factor * terms.weighted_gradient[corner];
   }
+}
+
+// Row k's columns (k, then its neighbours in the order the triangles around k first meet them)
+// and, per triangle around k, the entries of its corners: what add_terms needs, set once per
+// mesh. The row's length was counted by row_length.
+void fill_row_structure(const std::vector<Triangle>& triangles, std::size_t k,
+                        SmoothingCells& cells) {
+  const Index row_begin = cells.offset[k];
+  if (cells.offset[k + 1] == row_begin) return;  // a node in no triangle has an empty row
+  Index row_end = row_begin;
+  cells.column[row_end++] = Index(k);
+  for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
+    const Triangle& t = triangles[cells.node_triangles.triangle[i]];
+    for (int corner = 0; corner < 3; ++corner) {
+      Index entry = row_begin;
+      while (entry < row_end && cells.column[entry] != t[corner]) ++entry;
+      if (entry == row_end) cells.column[row_end++] = t[corner];
+      cells.corner_entry[i][corner] = entry;
+    }
+  }
+  assert(row_end == cells.offset[k + 1]);
 }
 
 // Row k: b_kl A_k = sum over the triangles e around k of (A_e / 3) grad N_l^e, then A_k and b_kl.
@@ -147,12 +156,8 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
               std::size_t k, double layer_depth, bool on_surface, const WallStrips* walls,
               SmoothingCells& cells) {
   const Index row_begin = cells.offset[k];
-  Index row_end = row_begin;
-  if (cells.offset[k + 1] > row_begin) {  // a node in no triangle has an empty row
-    cells.column[row_end] = Index(k);
-    cells.gradient[row_end].setZero();
-    ++row_end;
-  }
+  const Index row_end = cells.offset[k + 1];
+  for (Index entry = row_begin; entry < row_end; ++entry) cells.gradient[entry].setZero();
   const double depth = layer_depth;
   double area = 0.0;
   double plain_area = 0.0;       // sum_e A_e / 3, the slides' cell
@@ -166,7 +171,7 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   double wall_wedge = 0.0;  // wedge carried by the wall strips at k
   for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
     const Triangle& t = triangles[cells.node_triangles.triangle[i]];
-    const TriangleTerms terms = triangle_terms(t, points);
+    const TriangleTerms& terms = cells.triangle_terms[cells.node_triangles.triangle[i]];
     plain_area += terms.area / 3.0;  // papers/004 "Strain smoothing": A^(k) = (1/3) sum A_e^j
     // Weight of grad N^e in this row: A_e / 3, plus the strips of e's surface edges at k
     // (weighted_gradient holds (A_e / 3) grad N^e, so the strips enter as a factor on it).
@@ -201,7 +206,7 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
         }
       }
     }
-    add_to_row(t, terms, factor, row_begin, row_end, cells);
+    add_terms(terms, factor, cells.corner_entry[i], cells);
   }
   if (n_incoming == 1 && n_outgoing == 1) {
     const double turn = std::atan2(cross(incoming, outgoing), incoming.dot(outgoing));
@@ -218,9 +223,9 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
     // sum_e (spread / well_area) (A_e / 3) grad N^e
     for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
       const Triangle& t = triangles[cells.node_triangles.triangle[i]];
-      const TriangleTerms terms = triangle_terms(t, points);
+      const TriangleTerms& terms = cells.triangle_terms[cells.node_triangles.triangle[i]];
       if (2.0 * terms.area >= depth * longest_edge(t, points)) {
-        add_to_row(t, terms, spread / well_area, row_begin, row_end, cells);
+        add_terms(terms, spread / well_area, cells.corner_entry[i], cells);
       }
     }
   } else {
@@ -230,7 +235,6 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   if (walls != nullptr) {
     area += add_wall_strip_terms(*walls, points, k, row_begin, row_end, wall_wedge, cells);
   }
-  assert(row_end == cells.offset[k + 1]);
   assert((row_end == row_begin || area > 0.0) && "a smoothing-cell area is not positive");
   cells.area[k] = area;
   if (area != 0.0) {  // signed areas: an inverted triangle still counts consistently
@@ -265,6 +269,9 @@ void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& point
   cells.column.resize(n_entries);
   cells.gradient.resize(n_entries);
   cells.transpose.resize(n_entries);
+  cells.corner_entry.resize(cells.node_triangles.triangle.size());
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::ptrdiff_t k = 0; k < n; ++k) fill_row_structure(triangles, std::size_t(k), cells);
   refill_smoothing_cells(mesh, points, cells, layer_depth, walls);
 
   // Transpose: the row of the smaller node of each pair {k, l} finds (l, k) in row l (rows are
@@ -325,10 +332,10 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
 
 void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
                             SmoothingCells& cells, double layer_depth, const WallStrips* walls) {
-  // Fill pass: each row written by one thread only; the rows come out in the same order for the
-  // same triangles, so offsets and the transpose map stay valid. Only a surface node (flagged by
-  // the alpha mesh; every node when the flags are absent, e.g. a mesh built by hand) can own a
-  // strip.
+  // Fill pass: each row written by one thread only, into the entries the build laid out for
+  // these triangles (offsets, columns, corner entries and the transpose map stay valid). Only a
+  // surface node (flagged by the alpha mesh; every node when the flags are absent, e.g. a mesh
+  // built by hand) can own a strip.
   const std::size_t n_nodes = points.size();
   const bool know_surface = mesh.surface.size() == n_nodes;
   const std::ptrdiff_t n = std::ptrdiff_t(n_nodes);
@@ -336,6 +343,14 @@ void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& poin
                                  ? walls
                                  : nullptr;  // wall strips replace layer strips only
   size_wall_entries(strips, n_nodes, cells);
+  // Each triangle's terms once (a triangle sits in three rows)
+  const std::vector<Triangle>& triangles = mesh.triangles;
+  const std::ptrdiff_t n_triangles = std::ptrdiff_t(triangles.size());
+  cells.triangle_terms.resize(triangles.size());
+#pragma omp parallel for schedule(static) if (n_triangles > kParallelMin)
+  for (std::ptrdiff_t e = 0; e < n_triangles; ++e) {
+    cells.triangle_terms[std::size_t(e)] = triangle_terms(triangles[std::size_t(e)], points);
+  }
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     fill_row(mesh.triangles, points, std::size_t(k), layer_depth,

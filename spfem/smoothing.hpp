@@ -6,6 +6,7 @@
 // is F_int,l = sum_k B_kl^T sigma_k A_k (plane strain, per metre of thickness). Stress and internal
 // variables stay on the nodes (the particles): nothing is mapped between meshes.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +15,13 @@
 #include "spfem/wall_strip.hpp"
 
 namespace duet::spfem {
+
+/// What linear triangle e adds to the rows of its corners, computed once per step:
+/// A_e (signed) and (A_e / 3) grad N_l^e for its corners l = t[0], t[1], t[2].
+struct TriangleTerms {
+  double area = 0.0;                      // A_e (m^2)
+  std::array<Vec2, 3> weighted_gradient;  // (A_e / 3) grad N_corner^e (m)
+};
 
 /// Smoothed gradients in compressed rows: row k lists the nodes l that share a triangle with k
 /// (k itself included) and b_kl = smoothed dN_l/dx at node k.
@@ -32,6 +40,10 @@ struct SmoothingCells {
   // Node -> triangles adjacency (CSR), built first and kept so its storage is reused each step;
   // the explicit solver's per-triangle gathers read it too.
   NodeTriangles node_triangles;
+  // Per entry r of node_triangles (triangle e around node k): the entries of e's corners
+  // t[0], t[1], t[2] in row k, so that a refill adds without searching the row.
+  std::vector<std::array<std::int32_t, 3>> corner_entry;
+  std::vector<TriangleTerms> triangle_terms;  // per triangle of the mesh, at the last fill
 };
 
 /// Builds the cells of `mesh` at the current `points`. Reuses the storage of `cells`.

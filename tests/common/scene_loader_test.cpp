@@ -145,6 +145,15 @@ TEST(SceneLoader, StiffnessStabilisationDefaultsToOffAndANegativeValueIsRefused)
   EXPECT_NE(message.find("spfem.stiffness_stabilisation"), std::string::npos) << message;
 }
 
+TEST(SceneLoader, RemeshAngleFractionDefaultsToThePlainThresholdAndStaysWithinOne) {
+  EXPECT_DOUBLE_EQ(load_scene_from_string(kScene, "scene.toml").spfem.remesh_angle_fraction, 0.0);
+  EXPECT_DOUBLE_EQ(load_scene_from_string(kScene, "scene.toml", {"spfem.remesh_angle_fraction=0.5"})
+                       .spfem.remesh_angle_fraction,
+                   0.5);
+  const std::string message = refusal(kScene, {"spfem.remesh_angle_fraction=1.5"});
+  EXPECT_NE(message.find("spfem.remesh_angle_fraction"), std::string::npos) << message;
+}
+
 TEST(SceneLoader, UnknownKeyNamesFileLineKeyAndSuggestion) {
   std::string text = kScene;
   text.replace(text.find("min = [0.0, 0.0]"), 16, "mni = [0.0, 0.0]");

@@ -1,0 +1,114 @@
+#include "spfem/remesh_trigger.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <numbers>
+
+namespace duet::spfem {
+namespace {
+
+// Below this many triangles a loop runs on one thread (as in spfem/smoothing.cpp).
+constexpr std::ptrdiff_t kParallelMin = 2048;
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+// The smallest interior angle of a triangle as its two sides: 2A (signed) and e1 . e2, the dot
+// product of the edges at that vertex, so theta = atan2(2A, e1 . e2). Counter-clockwise, the
+// smallest angle is opposite the shortest edge; clockwise (2A < 0) every angle is negative and
+// the smallest is opposite the longest edge (as smallest_angle in alpha_mesh.cpp).
+struct AngleSides {
+  double twice_area;
+  double along;
+};
+
+AngleSides smallest_angle_sides(const Triangle& t, const std::vector<Vec2>& points) {
+  const Vec2 p[3] = {points[std::size_t(t[0])], points[std::size_t(t[1])],
+                     points[std::size_t(t[2])]};
+  const Vec2 e01 = p[1] - p[0];
+  const Vec2 e02 = p[2] - p[0];
+  const double twice_area = e01.x() * e02.y() - e01.y() * e02.x();
+  const double opposite[3] = {(p[2] - p[1]).squaredNorm(), e02.squaredNorm(), e01.squaredNorm()};
+  const double* pick = twice_area >= 0.0 ? std::min_element(opposite, opposite + 3)
+                                         : std::max_element(opposite, opposite + 3);
+  const int k = int(pick - opposite);
+  const double along = (p[(k + 1) % 3] - p[k]).dot(p[(k + 2) % 3] - p[k]);
+  return {twice_area, along};
+}
+
+// Smallest angle (deg) from the largest cotangent over the counter-clockwise triangles and the
+// smallest angle over the inverted ones.
+double smallest_degrees(double largest_cot, double inverted_degrees, bool any) {
+  if (!any) return 180.0;
+  const double ccw = largest_cot > -std::numeric_limits<double>::infinity()
+                         ? std::atan2(1.0, largest_cot) / kDegree
+                         : 180.0;  // every triangle inverted or flat
+  return std::min(ccw, inverted_degrees);
+}
+
+}  // namespace
+
+double arm_remesh_trigger(const AlphaMesh& mesh, const std::vector<Vec2>& points, double angle_deg,
+                          double fraction, RemeshTrigger& trigger) {
+  const std::ptrdiff_t n = std::ptrdiff_t(mesh.triangles.size());
+  trigger.cot_limit.resize(mesh.triangles.size());
+  const double infinite = std::numeric_limits<double>::infinity();
+  const double plain_cot = angle_deg > 0.0 ? 1.0 / std::tan(angle_deg * kDegree) : infinite;
+  double largest_cot = -infinite;
+  double inverted = 180.0;
+#pragma omp parallel for schedule(static) reduction(max            \
+                                                    : largest_cot) \
+    reduction(min                                                  \
+              : inverted) if (n > kParallelMin)
+  for (std::ptrdiff_t e = 0; e < n; ++e) {
+    const AngleSides s = smallest_angle_sides(mesh.triangles[std::size_t(e)], points);
+    if (s.twice_area > 0.0) {
+      largest_cot = std::max(largest_cot, s.along / s.twice_area);
+    } else {
+      inverted = std::min(inverted, std::atan2(s.twice_area, s.along) / kDegree);
+    }
+    double cot = plain_cot;
+    if (fraction > 0.0) {
+      // theta_limit = min(remesh_angle, fraction theta_now); a triangle born flat or inverted
+      // (not from a Delaunay mesh) is left to the inversion test
+      const double limit =
+          s.twice_area > 0.0
+              ? std::min(angle_deg * kDegree, fraction * std::atan2(s.twice_area, s.along))
+              : 0.0;
+      cot = limit > 0.0 ? 1.0 / std::tan(limit) : infinite;
+    }
+    trigger.cot_limit[std::size_t(e)] = cot;
+  }
+  return smallest_degrees(largest_cot, inverted, n > 0);
+}
+
+bool remesh_due(const AlphaMesh& mesh, const std::vector<Vec2>& points,
+                const RemeshTrigger& trigger, double& smallest) {
+  const std::ptrdiff_t n = std::ptrdiff_t(mesh.triangles.size());
+  const double infinite = std::numeric_limits<double>::infinity();
+  double largest_cot = -infinite;
+  double inverted = 180.0;
+  int due = 0;
+#pragma omp parallel for schedule(static) reduction(max                                  \
+                                                    : largest_cot) reduction(min         \
+                                                                             : inverted) \
+    reduction(max                                                                        \
+              : due) if (n > kParallelMin)
+  for (std::ptrdiff_t e = 0; e < n; ++e) {
+    const AngleSides s = smallest_angle_sides(mesh.triangles[std::size_t(e)], points);
+    if (s.twice_area > 0.0) {
+      // theta < theta_limit  <=>  cot theta > cot theta_limit (0 < theta <= 60 deg)
+      const double cot = s.along / s.twice_area;
+      largest_cot = std::max(largest_cot, cot);
+      if (cot > trigger.cot_limit[std::size_t(e)]) due = 1;
+    } else {
+      inverted = std::min(inverted, std::atan2(s.twice_area, s.along) / kDegree);
+      if (s.twice_area < 0.0 || std::isfinite(trigger.cot_limit[std::size_t(e)])) due = 1;
+    }
+  }
+  smallest = smallest_degrees(largest_cot, inverted, n > 0);
+  return due != 0;
+}
+
+}  // namespace duet::spfem
