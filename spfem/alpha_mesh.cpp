@@ -294,23 +294,13 @@ void label_mesh(std::size_t n_nodes, AlphaMesh& mesh) {
 }
 
 double smallest_angle(const AlphaMesh& mesh, const std::vector<Vec2>& points) {
-  // Signed interior angle at a vertex: atan2(2A, e_next . e_prev), with 2A the same for all three
-  // vertices. Counter-clockwise: the smallest angle is opposite the shortest edge; clockwise
-  // (inverted, 2A < 0): all angles are negative, the smallest is opposite the longest edge.
-  // On a counter-clockwise triangle the angle decreases as along / 2A (its cotangent) grows, so
-  // the smallest of those takes one atan2 at the end; an inverted one is measured at once.
+  // Counter-clockwise triangles: the angle decreases as along / 2A (its cotangent) grows, so the
+  // smallest of them takes one atan2 at the end; an inverted one is measured at once.
   double smallest = 180.0;            // no triangle
   double largest_cotangent = -1e300;  // over the counter-clockwise triangles
   double best_twice_area = 0.0, best_along = 0.0;
   for (const Triangle& t : mesh.triangles) {
-    const Vec2 p[3] = {points[t[0]], points[t[1]], points[t[2]]};
-    const double twice_area = cross(p[1] - p[0], p[2] - p[0]);
-    const double opposite[3] = {(p[2] - p[1]).squaredNorm(), (p[0] - p[2]).squaredNorm(),
-                                (p[1] - p[0]).squaredNorm()};
-    const auto pick = twice_area >= 0.0 ? std::min_element(opposite, opposite + 3)
-                                        : std::max_element(opposite, opposite + 3);
-    const int k = static_cast<int>(pick - opposite);
-    const double along = (p[(k + 1) % 3] - p[k]).dot(p[(k + 2) % 3] - p[k]);
+    const auto [twice_area, along] = smallest_angle_sides(t, points);
     if (twice_area > 0.0) {
       if (along > largest_cotangent * twice_area) {
         largest_cotangent = along / twice_area;

@@ -7,7 +7,9 @@
 // fraction of its cost. Free surfaces, separation and re-contact appear and vanish as the cloud
 // moves. The nodes are the particles; nothing here knows of materials or stresses.
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -33,6 +35,30 @@ void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& 
 /// Recomputes `surface`, `component` and `n_components` of `mesh` from its triangles (for a mesh
 /// kept across steps, or one built by hand in a test). `n_nodes` is the number of points.
 void label_mesh(std::size_t n_nodes, AlphaMesh& mesh);
+
+/// The smallest interior angle of one triangle as its two sides, theta = atan2(twice_area, along):
+/// twice the signed area (the same at every corner) and the dot product of the two edges at that
+/// corner. Counter-clockwise, the smallest angle has the largest cotangent along / 2A, so the
+/// largest of the three dot products; clockwise (inverted, 2A < 0) every angle is negative and the
+/// smallest is the one nearest -180 deg, the smallest dot product.
+struct AngleSides {
+  double twice_area;
+  double along;
+};
+
+inline AngleSides smallest_angle_sides(const Triangle& t, const std::vector<Vec2>& points) {
+  const Vec2& a = points[static_cast<std::size_t>(t[0])];
+  const Vec2& b = points[static_cast<std::size_t>(t[1])];
+  const Vec2& c = points[static_cast<std::size_t>(t[2])];
+  const Vec2 ab = b - a, bc = c - b, ca = a - c;
+  const double twice_area = ca.x() * ab.y() - ca.y() * ab.x();  // (b - a) x (c - a)
+  const double at_a = -ab.dot(ca);
+  const double at_b = -bc.dot(ab);
+  const double at_c = -ca.dot(bc);
+  const double along = twice_area >= 0.0 ? std::max(at_a, std::max(at_b, at_c))
+                                         : std::min(at_a, std::min(at_b, at_c));
+  return {twice_area, along};
+}
 
 /// Smallest interior angle (degrees) over the triangles at the current `points`; a triangle that
 /// has turned clockwise (inverted) gives a negative value. The remesh-on-angle trigger reads it.

@@ -212,11 +212,14 @@ double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
   // gathers w_k |b_kl| through the transpose map.
   const std::size_t n = cells_.area.size();
   cell_weight_.resize(n);
+  gradient_norm_.resize(cells_.gradient.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
     double row_sum = 0.0;
     for (std::int32_t e = cells_.offset[k]; e < cells_.offset[k + 1]; ++e) {
-      row_sum += cells_.gradient[static_cast<std::size_t>(e)].norm();
+      const double norm = cells_.gradient[static_cast<std::size_t>(e)].norm();  // |b_km|
+      gradient_norm_[static_cast<std::size_t>(e)] = norm;
+      row_sum += norm;
     }
     cell_weight_[k] = cells_.area[k] * block_modulus_[k] * row_sum;
   }
@@ -228,7 +231,7 @@ double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
     for (std::int32_t e = cells_.offset[l]; e < cells_.offset[l + 1]; ++e) {
       const auto k = static_cast<std::size_t>(cells_.column[static_cast<std::size_t>(e)]);
       const auto kl = static_cast<std::size_t>(cells_.transpose[static_cast<std::size_t>(e)]);
-      bound += cell_weight_[k] * cells_.gradient[kl].norm();
+      bound += cell_weight_[k] * gradient_norm_[kl];
     }
     omega_squared = std::max(omega_squared, std::abs(bound) / particles.mass[l]);
   }

@@ -109,8 +109,9 @@ class ExplicitSolver {
   std::vector<double> wave_speed_;  // per node, m/s
   std::vector<double>
       block_modulus_;  // per node: M = |lambda| + 2 G or the model's tangent bound (Pa)
-  std::vector<double> stiffening_;   // per node: M / |sigma| (0: stiffness not stress-bound)
-  std::vector<double> cell_weight_;  // per cell: A_k M_k sum_m |b_km|, time-step scratch
+  std::vector<double> stiffening_;     // per node: M / |sigma| (0: stiffness not stress-bound)
+  std::vector<double> cell_weight_;    // per cell: A_k M_k sum_m |b_km|, time-step scratch
+  std::vector<double> gradient_norm_;  // per smoothing entry: |b_km|, time-step scratch
   std::vector<Vec2> internal_force_;
   std::vector<Vec2> stabilisation_force_;
   std::vector<Vec2> external_force_;

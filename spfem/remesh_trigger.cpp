@@ -14,29 +14,6 @@ constexpr std::ptrdiff_t kParallelMin = 2048;
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-// The smallest interior angle of a triangle as its two sides: 2A (signed) and e1 . e2, the dot
-// product of the edges at that vertex, so theta = atan2(2A, e1 . e2). Counter-clockwise, the
-// smallest angle is opposite the shortest edge; clockwise (2A < 0) every angle is negative and
-// the smallest is opposite the longest edge (as smallest_angle in alpha_mesh.cpp).
-struct AngleSides {
-  double twice_area;
-  double along;
-};
-
-AngleSides smallest_angle_sides(const Triangle& t, const std::vector<Vec2>& points) {
-  const Vec2 p[3] = {points[std::size_t(t[0])], points[std::size_t(t[1])],
-                     points[std::size_t(t[2])]};
-  const Vec2 e01 = p[1] - p[0];
-  const Vec2 e02 = p[2] - p[0];
-  const double twice_area = e01.x() * e02.y() - e01.y() * e02.x();
-  const double opposite[3] = {(p[2] - p[1]).squaredNorm(), e02.squaredNorm(), e01.squaredNorm()};
-  const double* pick = twice_area >= 0.0 ? std::min_element(opposite, opposite + 3)
-                                         : std::max_element(opposite, opposite + 3);
-  const int k = int(pick - opposite);
-  const double along = (p[(k + 1) % 3] - p[k]).dot(p[(k + 2) % 3] - p[k]);
-  return {twice_area, along};
-}
-
 // Smallest angle (deg) from the largest cotangent over the counter-clockwise triangles and the
 // smallest angle over the inverted ones.
 double smallest_degrees(double largest_cot, double inverted_degrees, bool any) {
