@@ -42,52 +42,6 @@ TriangleTerms triangle_terms(const Triangle& t, const std::vector<Vec2>& points)
   return terms;
 }
 
-// Nodes other than k of the triangles around k, each counted once, searching the earlier
-// triangles (no storage: for a node of very high degree).
-Index count_neighbours_in_place(const SmoothingCells& cells, const std::vector<Triangle>& triangles,
-                                std::size_t k) {
-  const Index first = cells.node_triangles.offset[k];
-  const Index last = cells.node_triangles.offset[k + 1];
-  Index count = 0;
-  for (Index i = first; i < last; ++i) {
-    for (const Index node : triangles[cells.node_triangles.triangle[i]]) {
-      if (node == Index(k)) continue;
-      bool seen = false;
-      for (Index j = first; j < i && !seen; ++j) {
-        const Triangle& earlier = triangles[cells.node_triangles.triangle[j]];
-        seen = earlier[0] == node || earlier[1] == node || earlier[2] == node;
-      }
-      if (!seen) ++count;
-    }
-  }
-  return count;
-}
-
-// Length of row k: k and its distinct neighbours (at most two per triangle), none for a node in no
-// triangle. Distinct nodes are collected on the stack up to kLocalNeighbours.
-constexpr Index kLocalNeighbours = 48;
-
-Index row_length(const SmoothingCells& cells, const std::vector<Triangle>& triangles,
-                 std::size_t k) {
-  const Index first = cells.node_triangles.offset[k];
-  const Index last = cells.node_triangles.offset[k + 1];
-  if (first == last) return 0;
-  if (2 * (last - first) > kLocalNeighbours) {
-    return 1 + count_neighbours_in_place(cells, triangles, k);
-  }
-  std::array<Index, kLocalNeighbours> seen;
-  Index n_seen = 0;
-  for (Index i = first; i < last; ++i) {
-    for (const Index node : triangles[cells.node_triangles.triangle[i]]) {
-      if (node == Index(k)) continue;
-      Index j = 0;
-      while (j < n_seen && seen[j] != node) ++j;
-      if (j == n_seen) seen[n_seen++] = node;
-    }
-  }
-  return 1 + n_seen;
-}
-
 // True when `node` is a corner of exactly one triangle around k: then the edge (k, node) belongs
 // to that triangle only and lies on the surface of the mesh.
 bool is_surface_edge(const SmoothingCells& cells, const std::vector<Triangle>& triangles,
@@ -116,25 +70,35 @@ void add_terms(const TriangleTerms& terms, double factor, const std::array<Index
   }
 }
 
+// Position of `node` among the `length` entries of `row`, `length` when absent. No early exit:
+// rows are short (about seven entries) and a data-dependent exit is a mispredicted branch.
+Index find_in_row(const Index* row, Index length, Index node) {
+  Index found = length;
+  for (Index j = 0; j < length; ++j) found = row[j] == node ? j : found;
+  return found;
+}
+
 // Row k's columns (k, then its neighbours in the order the triangles around k first meet them)
-// and, per triangle around k, the entries of its corners: what add_terms needs, set once per
-// mesh. The row's length was counted by row_length.
-void fill_row_structure(const std::vector<Triangle>& triangles, std::size_t k,
-                        SmoothingCells& cells) {
-  const Index row_begin = cells.offset[k];
-  if (cells.offset[k + 1] == row_begin) return;  // a node in no triangle has an empty row
-  Index row_end = row_begin;
-  cells.column[row_end++] = Index(k);
-  for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
+// into `row` (room for 1 + 2 x its triangles) and, per triangle around k, the positions of its
+// corners in the row: what add_terms needs, set once per mesh. Returns the row's length (0 for
+// a node in no triangle).
+Index collect_row(const std::vector<Triangle>& triangles, std::size_t k, Index* row,
+                  SmoothingCells& cells) {
+  const Index first = cells.node_triangles.offset[k];
+  const Index last = cells.node_triangles.offset[k + 1];
+  if (first == last) return 0;
+  Index length = 1;
+  row[0] = Index(k);
+  for (Index i = first; i < last; ++i) {
     const Triangle& t = triangles[cells.node_triangles.triangle[i]];
     for (int corner = 0; corner < 3; ++corner) {
-      Index entry = row_begin;
-      while (entry < row_end && cells.column[entry] != t[corner]) ++entry;
-      if (entry == row_end) cells.column[row_end++] = t[corner];
-      cells.corner_entry[i][corner] = entry;
+      const Index found = find_in_row(row, length, t[corner]);
+      row[length] = t[corner];  // kept only when new
+      length += found == length ? 1 : 0;
+      cells.corner_entry[i][corner] = found;
     }
   }
-  assert(row_end == cells.offset[k + 1]);
+  return length;
 }
 
 // Row k: b_kl A_k = sum over the triangles e around k of (A_e / 3) grad N_l^e, then A_k and b_kl.
@@ -210,7 +174,11 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   }
   if (n_incoming == 1 && n_outgoing == 1) {
     const double turn = std::atan2(cross(incoming, outgoing), incoming.dot(outgoing));
-    const double wedge = depth * depth * std::clamp(std::tan(0.5 * turn), -1.0, 1.0);
+    // A strip along an edge shorter than the depth makes the turn between the edges arbitrary
+    // (two surface nodes nearly together): the wedge is held within depth x the shorter edge.
+    const double shorter = std::min(incoming.norm(), outgoing.norm());
+    const double wedge =
+        depth * std::min(depth, shorter) * std::clamp(std::tan(0.5 * turn), -1.0, 1.0);
     if (n_walled > 0) {
       wall_wedge = wedge;  // the corner against the wall: the wall strip's gradient
     } else {
@@ -254,13 +222,20 @@ void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& point
   const std::vector<Triangle>& triangles = mesh.triangles;
   build_node_triangles(triangles, n_nodes, cells.node_triangles);
 
-  // Counting pass: row k holds k and its distinct neighbours (none for a node in no triangle).
+  // Row k holds k and its distinct neighbours (none for a node in no triangle), at most
+  // 1 + 2 x its triangles: collected per node into that much scratch, then packed.
+  const std::ptrdiff_t n = std::ptrdiff_t(n_nodes);
+  const NodeTriangles& around = cells.node_triangles;
   cells.offset.resize(n_nodes + 1);
   cells.offset[0] = 0;
-  const std::ptrdiff_t n = std::ptrdiff_t(n_nodes);
+  cells.corner_entry.resize(around.triangle.size());
+  cells.row_scratch.resize(n_nodes + 2 * around.triangle.size());
+  const auto scratch_row = [&](std::ptrdiff_t k) {
+    return cells.row_scratch.data() + k + 2 * std::ptrdiff_t(around.offset[std::size_t(k)]);
+  };
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
-    cells.offset[k + 1] = row_length(cells, triangles, std::size_t(k));
+    cells.offset[k + 1] = collect_row(triangles, std::size_t(k), scratch_row(k), cells);
   }
   for (std::size_t k = 1; k <= n_nodes; ++k) cells.offset[k] += cells.offset[k - 1];
 
@@ -269,9 +244,15 @@ void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& point
   cells.column.resize(n_entries);
   cells.gradient.resize(n_entries);
   cells.transpose.resize(n_entries);
-  cells.corner_entry.resize(cells.node_triangles.triangle.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
-  for (std::ptrdiff_t k = 0; k < n; ++k) fill_row_structure(triangles, std::size_t(k), cells);
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const Index begin = cells.offset[k];
+    std::copy(scratch_row(k), scratch_row(k) + (cells.offset[k + 1] - begin),
+              cells.column.begin() + begin);
+    for (Index i = around.offset[k]; i < around.offset[k + 1]; ++i) {
+      for (Index& entry : cells.corner_entry[i]) entry += begin;
+    }
+  }
   refill_smoothing_cells(mesh, points, cells, layer_depth, walls);
 
   // Transpose: the row of the smaller node of each pair {k, l} finds (l, k) in row l (rows are
@@ -281,8 +262,9 @@ void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& point
     for (Index entry = cells.offset[k]; entry < cells.offset[k + 1]; ++entry) {
       const Index l = cells.column[entry];
       if (l < Index(k)) continue;  // set from row l
-      Index mirror = cells.offset[l];
-      while (cells.column[mirror] != Index(k)) ++mirror;  // (k, l) shares a triangle: present
+      const Index mirror =         // (k, l) shares a triangle: present
+          cells.offset[l] + find_in_row(&cells.column[cells.offset[l]],
+                                        cells.offset[l + 1] - cells.offset[l], Index(k));
       assert(mirror < cells.offset[l + 1]);
       cells.transpose[entry] = mirror;
       cells.transpose[mirror] = entry;

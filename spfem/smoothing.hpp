@@ -44,6 +44,7 @@ struct SmoothingCells {
   // t[0], t[1], t[2] in row k, so that a refill adds without searching the row.
   std::vector<std::array<std::int32_t, 3>> corner_entry;
   std::vector<TriangleTerms> triangle_terms;  // per triangle of the mesh, at the last fill
+  std::vector<std::int32_t> row_scratch;      // the build's rows before packing
 };
 
 /// Builds the cells of `mesh` at the current `points`. Reuses the storage of `cells`.
