@@ -166,6 +166,10 @@ void SphSolver::pair_loop(const Particles& particles) {
   const double dummy_volume = setup_.spacing * setup_.spacing;
   const bool sigma_max = o.wall_stress == SphWallStress::sigma_max;
   const bool extrapolated = o.dummy_velocity == SphDummyVelocity::extrapolated;
+  // The leapfrog takes eq 21's velocity gradient and eq 24's density rate from its second pass
+  // (velocity_gradient_pass.cpp, at the new positions and velocities), which overwrites them
+  // before anything reads them: here only Verlet needs them.
+  const bool rates = o.integrator != SphIntegrator::leapfrog;
   const Vec2 g = setup_.gravity;
   const PairData* work = work_.data();
   const SymR* work_r = work_r_.data();
@@ -214,10 +218,10 @@ void SphSolver::pair_loop(const Particles& particles) {
   };
   // What a pair adds to one end i with neighbour mass m_j and volume V_j (the other end's share
   // has the same form with m_i, V_i and -grad_i W_ij for the force).
-  const auto add = [](PairSum& s, const Pair& p, double m_j, double volume_j, double sign) {
+  const auto add = [rates](PairSum& s, const Pair& p, double m_j, double volume_j, double sign) {
     s.ax += sign * m_j * (p.cxx * p.gx + p.cxy * p.gy);  // eq 30
     s.ay += sign * m_j * (p.cxy * p.gx + p.cyy * p.gy);
-    s.add_rates(p.gx, p.gy, p.vx, p.vy, m_j, volume_j);  // eqs 21 and 24
+    if (rates) s.add_rates(p.gx, p.gy, p.vx, p.vy, m_j, volume_j);  // eqs 21 and 24
   };
 
   // Pass 1, soil and ghost pairs. Each soil pair sits in one row (NeighbourLists::
@@ -318,10 +322,12 @@ void SphSolver::pair_loop(const Particles& particles) {
       }
       const Vec2 a = Vec2(s.ax, s.ay) + g + external_force_[i] / pi.m;  // eq 30: + g
       acceleration_[i] = a;
-      Mat2 l;
-      l << s.lxx, s.lxy, s.lyx, s.lyy;
-      velocity_gradient_[i] = l;
-      density_rate_[i] = s.rho_rate;
+      if (rates) {
+        Mat2 l;
+        l << s.lxx, s.lxy, s.lyx, s.lyy;
+        velocity_gradient_[i] = l;
+        density_rate_[i] = s.rho_rate;
+      }
       const double a2 = a.squaredNorm();
       a_max2 = std::max(a_max2, std::isfinite(a2) ? a2 : std::numeric_limits<double>::infinity());
     }
