@@ -129,6 +129,7 @@ void SphSolver::initialise(Particles& particles) {
   order_.resize(n);
   for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(i);
   rebuild_ = true;
+  gradient_cached_ = false;
 
   acceleration_.assign(n, Vec2::Zero());
   external_force_.assign(n, Vec2::Zero());
@@ -175,23 +176,36 @@ void SphSolver::pair_loop(const Particles& particles) {
   const SymR* work_r = work_r_.data();
   const std::int32_t* work_wall = work_wall_.data();
   const bool parallel = n >= kParallelMin;
+  // The kernel gradient factors of the leapfrog's velocity pass, when it ran at these very
+  // positions with this neighbour list (gradient_cached_); the artificial stress needs W_ij and
+  // r as well, so with b > 0 everything is computed here.
+  const double* cached_factor = gradient_cached_ && b == 0.0 ? gradient_factor_.data() : nullptr;
+  const std::size_t stride = neighbours_.stride();
   std::fill(wall_force_scratch_.begin(), wall_force_scratch_.end(), Vec2::Zero());
   double a_max2 = 0.0;
   int team = 1;
 
   // The terms of one pair (i, j) that both ends share: grad_i W_ij (g), v_i - v_j (v), and the
   // bracket of eq 30, sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij (c). False when j lies
-  // in the skin, beyond 2h.
+  // in the skin, beyond 2h. `cached` points at the pair's gradient factor from the velocity pass,
+  // or is null.
   struct Pair {
     double gx, gy, vx, vy, cxx, cyy, cxy;
   };
   const auto pair_terms = [&](const PairData& pi, const PairData& pj, double rho_j, double txx,
-                              double tyy, double txy, const SymR& r_i, const SymR& r_j, Pair& p) {
+                              double tyy, double txy, const SymR& r_i, const SymR& r_j,
+                              const double* cached, Pair& p) {
     const double dx = pi.x - pj.x, dy = pi.y - pj.y;
     const double r2 = dx * dx + dy * dy;
     if (r2 >= support2) return false;
-    const double r = std::sqrt(r2);
-    const double f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
+    double r = 0.0;  // only the artificial stress needs it, and then nothing is cached
+    double f;
+    if (cached != nullptr) {
+      f = *cached;  // the same arithmetic on the same positions, done in the velocity pass
+    } else {
+      r = std::sqrt(r2);
+      f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
+    }
     p.gx = f * dx;  // grad_i W_ij
     p.gy = f * dy;
     p.vx = pi.vx - pj.vx;
@@ -243,10 +257,14 @@ void SphSolver::pair_loop(const Particles& particles) {
       const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
       PairSum s;
       Pair p;
-      for (const std::uint32_t j : neighbours_.early(k)) {
+      const auto early = neighbours_.early(k);
+      const double* row_factor = cached_factor != nullptr ? cached_factor + k * stride : nullptr;
+      for (std::size_t e = 0; e < early.size(); ++e) {
+        const std::uint32_t j = early[e];
         const PairData& pj = work[j];
         const SymR& r_j = b > 0.0 ? work_r[j] : r_i;
-        if (!pair_terms(pi, pj, pj.rho, pj.sxx, pj.syy, pj.sxy, r_i, r_j, p)) continue;
+        const double* cached = row_factor != nullptr ? row_factor + e : nullptr;
+        if (!pair_terms(pi, pj, pj.rho, pj.sxx, pj.syy, pj.sxy, r_i, r_j, cached, p)) continue;
         add(s, p, pj.m, pj.vol, 1.0);
         if (j < n) {
           PairSum& sj = sum[j];
@@ -301,22 +319,28 @@ void SphSolver::pair_loop(const Particles& particles) {
           r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
         }
         const double m_dummy = rho_i * dummy_volume;
-        const auto dummy = [&](const PairData& pj, std::int32_t wall) {
+        // The late part of row k follows its early part in the cache, as in the row.
+        const double* late_factor = cached_factor != nullptr
+                                        ? cached_factor + k * stride + neighbours_.early(k).size()
+                                        : nullptr;
+        const auto dummy = [&](const PairData& pj, std::int32_t wall, std::size_t e) {
           Pair p;
-          if (!pair_terms(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, p)) return;
+          const double* cached = late_factor != nullptr ? late_factor + e : nullptr;
+          if (!pair_terms(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, cached, p)) return;
           add(s, p, m_dummy, dummy_volume, 1.0);
           // reaction on the wall of the dummy
           wall_force[wall] -=
               pi.m * m_dummy * Vec2(p.cxx * p.gx + p.cxy * p.gy, p.cxy * p.gx + p.cyy * p.gy);
         };
         if (!extrapolated) {
-          for (const std::uint32_t j : late) dummy(work[j], work_wall[j]);
+          for (std::size_t e = 0; e < late.size(); ++e) dummy(work[late[e]], work_wall[late[e]], e);
         } else {
           WallLine line;  // pi's nearest segment of the dummy's wall
-          for (const std::uint32_t j : late) {
+          for (std::size_t e = 0; e < late.size(); ++e) {
+            const std::uint32_t j = late[e];
             PairData pj = work[j];
             extrapolate_dummy_velocity(pi, work_wall[j], line, pj);
-            dummy(pj, work_wall[j]);
+            dummy(pj, work_wall[j], e);
           }
         }
       }
@@ -545,6 +569,7 @@ void SphSolver::settle(Particles& particles, double duration, double damping) {
   settling_ = false;
   particles.start_from_rest();
   first_step_ = true;
+  gradient_cached_ = false;
 }
 
 }  // namespace duet::sph
