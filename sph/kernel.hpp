@@ -4,6 +4,8 @@
 // value() and gradient() are inline: the pair loops call them for every neighbour pair.
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <string>
 
 #include "common/scene.hpp"
@@ -13,6 +15,16 @@ namespace duet::sph {
 
 /// The scene's [sph] kernel choice (parsed and checked by the scene loader).
 using KernelKind = SphKernel;
+
+/// take_a ? a : b by a bit mask, for the pair loops: GCC compiles such a choice between doubles
+/// into a branch (and moves the work of the chosen side into it), which costs a misprediction
+/// whenever the choice follows no pattern. Both sides must be computed; the result is exactly
+/// one of them.
+inline double select_without_branch(bool take_a, double a, double b) {
+  const std::uint64_t mask = -static_cast<std::uint64_t>(take_a);  // all ones or none
+  return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & mask) |
+                               (std::bit_cast<std::uint64_t>(b) & ~mask));
+}
 
 std::string kernel_name(KernelKind kind);
 
@@ -75,7 +87,9 @@ class Kernel {
   /// The same as gradient_factor(r), branch free, for the pair loop: r >= 0 and inv_r = 1 / r
   /// (any finite value at r = 0, where the gradient f r_ij vanishes with r_ij). Both pieces of
   /// the cubic spline are evaluated and one is selected, so a pair costs the same wherever it
-  /// lies in the support (and beyond it, where the factor is zero).
+  /// lies in the support (and beyond it, where the factor is zero). Selected without a branch:
+  /// which piece a neighbour falls in is a coin toss for the diagonal neighbours of a lattice at
+  /// h / dp = sqrt 2.
   double gradient_factor(double r, double inv_r) const {
     const double q = r * inv_h_;
     if (kind_ == KernelKind::cubic_spline) {
@@ -83,7 +97,7 @@ class Kernel {
       const double inner = alpha_ * inv_h_ * inv_h_ * (-3.0 + 2.25 * q);
       const double t = std::max(2.0 - q, 0.0);
       const double outer = -0.75 * alpha_ * inv_h_ * t * t * inv_r;
-      return q < 1.0 ? inner : outer;
+      return select_without_branch(q < 1.0, inner, outer);
     }
     // d/dr of simhypo-sand eq 23, divided by r
     const double a = std::max(1.0 - 0.5 * q, 0.0);

@@ -129,6 +129,7 @@ void SphSolver::initialise(Particles& particles) {
   order_.resize(n);
   for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(i);
   rebuild_ = true;
+  gradient_cached_ = false;
 
   acceleration_.assign(n, Vec2::Zero());
   external_force_.assign(n, Vec2::Zero());
@@ -166,39 +167,55 @@ void SphSolver::pair_loop(const Particles& particles) {
   const double dummy_volume = setup_.spacing * setup_.spacing;
   const bool sigma_max = o.wall_stress == SphWallStress::sigma_max;
   const bool extrapolated = o.dummy_velocity == SphDummyVelocity::extrapolated;
+  // The leapfrog takes eq 21's velocity gradient and eq 24's density rate from its second pass
+  // (velocity_gradient_pass.cpp, at the new positions and velocities), which overwrites them
+  // before anything reads them: here only Verlet needs them.
+  const bool rates = o.integrator != SphIntegrator::leapfrog;
   const Vec2 g = setup_.gravity;
   const PairData* work = work_.data();
   const SymR* work_r = work_r_.data();
   const std::int32_t* work_wall = work_wall_.data();
   const bool parallel = n >= kParallelMin;
+  // The kernel gradient factors of the leapfrog's velocity pass, when it ran at these very
+  // positions with this neighbour list (gradient_cached_); the artificial stress needs W_ij and
+  // r as well, so with b > 0 everything is computed here.
+  const double* cached_factor = gradient_cached_ && b == 0.0 ? gradient_factor_.data() : nullptr;
+  const std::size_t stride = neighbours_.stride();
   std::fill(wall_force_scratch_.begin(), wall_force_scratch_.end(), Vec2::Zero());
   double a_max2 = 0.0;
   int team = 1;
 
   // The terms of one pair (i, j) that both ends share: grad_i W_ij (g), v_i - v_j (v), and the
   // bracket of eq 30, sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij (c). False when j lies
-  // in the skin, beyond 2h.
+  // in the skin, beyond 2h. `cached` points at the pair's gradient factor from the velocity pass,
+  // or is null.
   struct Pair {
     double gx, gy, vx, vy, cxx, cyy, cxy;
   };
   const auto pair_terms = [&](const PairData& pi, const PairData& pj, double rho_j, double txx,
-                              double tyy, double txy, const SymR& r_i, const SymR& r_j, Pair& p) {
+                              double tyy, double txy, const SymR& r_i, const SymR& r_j,
+                              const double* cached, Pair& p) {
     const double dx = pi.x - pj.x, dy = pi.y - pj.y;
     const double r2 = dx * dx + dy * dy;
     if (r2 >= support2) return false;
-    const double r = std::sqrt(r2);
-    const double f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
+    double r = 0.0;  // only the artificial stress needs it, and then nothing is cached
+    double f;
+    if (cached != nullptr) {
+      f = *cached;  // the same arithmetic on the same positions, done in the velocity pass
+    } else {
+      r = std::sqrt(r2);
+      f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
+    }
     p.gx = f * dx;  // grad_i W_ij
     p.gy = f * dy;
     p.vx = pi.vx - pj.vx;
     p.vy = pi.vy - pj.vy;
-    // Peng 2015 eqs 26-27: artificial viscosity on approaching pairs
+    // Peng 2015 eqs 26-27: artificial viscosity on approaching pairs (vr < 0), evaluated for
+    // every pair and selected without a branch: about half the pairs approach, in no pattern.
     const double vr = p.vx * dx + p.vy * dy;
-    double pi_ij = 0.0;
-    if (vr < 0.0) {
-      const double phi = h * vr / (r2 + eps_h2);
-      pi_ij = (-alpha_cs * phi + beta * phi * phi) * 2.0 / (pi.rho + rho_j);
-    }
+    const double phi = h * vr / (r2 + eps_h2);
+    const double viscosity = (-alpha_cs * phi + beta * phi * phi) * 2.0 / (pi.rho + rho_j);
+    const double pi_ij = select_without_branch(vr < 0.0, viscosity, 0.0);
     // Peng 2015 eq 30: sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij
     p.cxx = pi.sxx + txx - pi_ij;
     p.cyy = pi.syy + tyy - pi_ij;
@@ -214,10 +231,10 @@ void SphSolver::pair_loop(const Particles& particles) {
   };
   // What a pair adds to one end i with neighbour mass m_j and volume V_j (the other end's share
   // has the same form with m_i, V_i and -grad_i W_ij for the force).
-  const auto add = [](PairSum& s, const Pair& p, double m_j, double volume_j, double sign) {
+  const auto add = [rates](PairSum& s, const Pair& p, double m_j, double volume_j, double sign) {
     s.ax += sign * m_j * (p.cxx * p.gx + p.cxy * p.gy);  // eq 30
     s.ay += sign * m_j * (p.cxy * p.gx + p.cyy * p.gy);
-    s.add_rates(p.gx, p.gy, p.vx, p.vy, m_j, volume_j);  // eqs 21 and 24
+    if (rates) s.add_rates(p.gx, p.gy, p.vx, p.vy, m_j, volume_j);  // eqs 21 and 24
   };
 
   // Pass 1, soil and ghost pairs. Each soil pair sits in one row (NeighbourLists::
@@ -239,10 +256,14 @@ void SphSolver::pair_loop(const Particles& particles) {
       const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
       PairSum s;
       Pair p;
-      for (const std::uint32_t j : neighbours_.early(k)) {
+      const auto early = neighbours_.early(k);
+      const double* row_factor = cached_factor != nullptr ? cached_factor + k * stride : nullptr;
+      for (std::size_t e = 0; e < early.size(); ++e) {
+        const std::uint32_t j = early[e];
         const PairData& pj = work[j];
         const SymR& r_j = b > 0.0 ? work_r[j] : r_i;
-        if (!pair_terms(pi, pj, pj.rho, pj.sxx, pj.syy, pj.sxy, r_i, r_j, p)) continue;
+        const double* cached = row_factor != nullptr ? row_factor + e : nullptr;
+        if (!pair_terms(pi, pj, pj.rho, pj.sxx, pj.syy, pj.sxy, r_i, r_j, cached, p)) continue;
         add(s, p, pj.m, pj.vol, 1.0);
         if (j < n) {
           PairSum& sj = sum[j];
@@ -297,31 +318,39 @@ void SphSolver::pair_loop(const Particles& particles) {
           r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
         }
         const double m_dummy = rho_i * dummy_volume;
-        const auto dummy = [&](const PairData& pj, std::int32_t wall) {
+        // The late part of row k follows its early part in the cache, as in the row.
+        const double* late_factor = cached_factor != nullptr
+                                        ? cached_factor + k * stride + neighbours_.early(k).size()
+                                        : nullptr;
+        const auto dummy = [&](const PairData& pj, std::int32_t wall, std::size_t e) {
           Pair p;
-          if (!pair_terms(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, p)) return;
+          const double* cached = late_factor != nullptr ? late_factor + e : nullptr;
+          if (!pair_terms(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, cached, p)) return;
           add(s, p, m_dummy, dummy_volume, 1.0);
           // reaction on the wall of the dummy
           wall_force[wall] -=
               pi.m * m_dummy * Vec2(p.cxx * p.gx + p.cxy * p.gy, p.cxy * p.gx + p.cyy * p.gy);
         };
         if (!extrapolated) {
-          for (const std::uint32_t j : late) dummy(work[j], work_wall[j]);
+          for (std::size_t e = 0; e < late.size(); ++e) dummy(work[late[e]], work_wall[late[e]], e);
         } else {
           WallLine line;  // pi's nearest segment of the dummy's wall
-          for (const std::uint32_t j : late) {
+          for (std::size_t e = 0; e < late.size(); ++e) {
+            const std::uint32_t j = late[e];
             PairData pj = work[j];
             extrapolate_dummy_velocity(pi, work_wall[j], line, pj);
-            dummy(pj, work_wall[j]);
+            dummy(pj, work_wall[j], e);
           }
         }
       }
       const Vec2 a = Vec2(s.ax, s.ay) + g + external_force_[i] / pi.m;  // eq 30: + g
       acceleration_[i] = a;
-      Mat2 l;
-      l << s.lxx, s.lxy, s.lyx, s.lyy;
-      velocity_gradient_[i] = l;
-      density_rate_[i] = s.rho_rate;
+      if (rates) {
+        Mat2 l;
+        l << s.lxx, s.lxy, s.lyx, s.lyy;
+        velocity_gradient_[i] = l;
+        density_rate_[i] = s.rho_rate;
+      }
       const double a2 = a.squaredNorm();
       a_max2 = std::max(a_max2, std::isfinite(a2) ? a2 : std::numeric_limits<double>::infinity());
     }
@@ -539,6 +568,7 @@ void SphSolver::settle(Particles& particles, double duration, double damping) {
   settling_ = false;
   particles.start_from_rest();
   first_step_ = true;
+  gradient_cached_ = false;
 }
 
 }  // namespace duet::sph

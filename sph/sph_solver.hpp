@@ -154,6 +154,14 @@ class SphSolver {
   CellList cells_;
   NeighbourLists neighbours_;
   bool rebuild_ = true;
+  // The leapfrog's velocity pass runs at the positions the next step's pair loop sees: it keeps
+  // each pair's kernel gradient factor (grad_i W_ij = f r_ij), aligned with the neighbour rows
+  // (row k at k * stride, early part then late part; only pairs within 2h are written), for the
+  // pair loop to reuse. Valid only while gradient_cached_: set by the velocity pass, cleared by a
+  // neighbour rebuild, by a gather that finds any working position changed (drift, moving walls
+  // and their dummies and ghosts, anything the driver did), by initialise and by settle.
+  std::vector<double> gradient_factor_;
+  bool gradient_cached_ = false;
 
   // Per soil particle (driver's index) results of the pair loop.
   std::vector<Vec2> acceleration_;

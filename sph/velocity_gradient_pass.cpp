@@ -38,18 +38,23 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
   const std::int32_t* work_wall = work_wall_.data();
   const bool extrapolated = setup_.options.dummy_velocity == SphDummyVelocity::extrapolated;
   const bool parallel = n >= kParallelMin;
+  const std::size_t stride = neighbours_.stride();
+  double* factor = gradient_factor_.data();
   int team = 1;
 
   // Pair (i, j): grad_i W_ij (gx, gy) and v_i - v_j (vx, vy); false when j lies in the skin.
+  // The gradient factor f (grad_i W_ij = f r_ij) goes to the pair's slot `cached` for the next
+  // step's pair loop, which sees these same positions (SphSolver::gradient_factor_).
   struct Pair {
     double gx, gy, vx, vy;
   };
-  const auto pair_terms = [&](const PairData& pi, const PairData& pj, Pair& p) {
+  const auto pair_terms = [&](const PairData& pi, const PairData& pj, double& cached, Pair& p) {
     const double dx = pi.x - pj.x, dy = pi.y - pj.y;
     const double r2 = dx * dx + dy * dy;
     if (r2 >= support2) return false;
     const double r = std::sqrt(r2);
     const double f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
+    cached = f;
     p = {f * dx, f * dy, pi.vx - pj.vx, pi.vy - pj.vy};
     return true;
   };
@@ -72,9 +77,14 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
       const PairData& pi = work[k];
       PairSum s;
       Pair p;
-      for (const std::uint32_t j : neighbours_.early(k)) {
+      const auto early = neighbours_.early(k);
+      const auto late = neighbours_.late(k);
+      double* row_factor = factor + k * stride;  // early part, then late part, as in the row
+      double* late_factor = row_factor + early.size();
+      for (std::size_t e = 0; e < early.size(); ++e) {
+        const std::uint32_t j = early[e];
         const PairData& pj = work[j];
-        if (!pair_terms(pi, pj, p)) continue;
+        if (!pair_terms(pi, pj, row_factor[e], p)) continue;
         add(s, p, pj.m, pj.vol);
         if (j < n) add(sum[j], p, pi.m, pi.vol);
       }
@@ -82,15 +92,15 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
       // one (Morris 1997 / Bui 2008, as in pair_loop).
       const double m_dummy = pi.rho * dummy_volume;
       if (!extrapolated) {
-        for (const std::uint32_t j : neighbours_.late(k)) {
-          if (pair_terms(pi, work[j], p)) add(s, p, m_dummy, dummy_volume);
+        for (std::size_t e = 0; e < late.size(); ++e) {
+          if (pair_terms(pi, work[late[e]], late_factor[e], p)) add(s, p, m_dummy, dummy_volume);
         }
       } else {
         WallLine line;  // pi's nearest segment of the dummy's wall
-        for (const std::uint32_t j : neighbours_.late(k)) {
-          PairData pj = work[j];
-          extrapolate_dummy_velocity(pi, work_wall[j], line, pj);
-          if (pair_terms(pi, pj, p)) add(s, p, m_dummy, dummy_volume);
+        for (std::size_t e = 0; e < late.size(); ++e) {
+          PairData pj = work[late[e]];
+          extrapolate_dummy_velocity(pi, work_wall[late[e]], line, pj);
+          if (pair_terms(pi, pj, late_factor[e], p)) add(s, p, m_dummy, dummy_volume);
         }
       }
       sum[k] += s;
@@ -107,6 +117,8 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
     velocity_gradient_[i] = l;
     density_rate_[i] = s.rho_rate;
   }
+  // Nothing moves before the next step's gather, which clears this if anything did.
+  gradient_cached_ = true;
 }
 
 }  // namespace duet::sph

@@ -74,12 +74,21 @@ double SphSolver::gather(const Particles& particles) {
   const double b = setup_.options.artificial_stress;
   const double reach = kernel_.support_radius();
   const bool reference = !rebuild_;
+  // The velocity pass's gradient factors stay valid only if no working position changes
+  // (bitwise: the pair loop must compute what it would have computed itself).
+  const bool cached = gradient_cached_;
+  const auto same = [this](std::size_t k, const Vec2& x) {
+    return work_[k].x == x.x() && work_[k].y == x.y();
+  };
+  bool unchanged = true;
   double moved2 = 0.0;
   std::size_t active = 0;
-#pragma omp parallel for schedule(static) reduction(max : moved2) if (n >= kParallelMin)
+#pragma omp parallel for schedule(static) reduction(max : moved2) reduction(&& : unchanged) \
+    if (n >= kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = order_[k];
     const Vec2 x = particles.position[i];
+    if (cached) unchanged = unchanged && same(k, x);
     const Vec2 v = particles.velocity[i];
     const double rho = particles.density[i];
     const Mat3& s = particles.stress[i];
@@ -111,6 +120,7 @@ double SphSolver::gather(const Particles& particles) {
     const bool acts = mirror_particle(wall, segment, particles.position[src],
                                       particles.velocity[src], reach, x, v);
     active += acts ? 1 : 0;
+    if (cached) unchanged = unchanged && same(n + g, x);
     const double rho = particles.density[src];
     const Mat2 s = mirror(in_plane(particles.stress[src]), wall.normals[segment]);
     const double inv_rho2 = 1.0 / (rho * rho);
@@ -136,6 +146,7 @@ double SphSolver::gather(const Particles& particles) {
     // Dummy: mass, density and stress depend on the soil particle it interacts with (pair loop).
     const std::size_t k = n + n_ghost + d;
     const Vec2 x = dummy_position_[d];
+    if (cached) unchanged = unchanged && same(k, x);
     work_[k] = {x.x(), x.y(), dummy_velocity_[d].x(), dummy_velocity_[d].y(), 0, 0, 0, 0, 0, 0};
     boundary_position_[d] = x;
     if (reference) moved2 = std::max(moved2, (x - work_reference_[k]).squaredNorm());
@@ -146,6 +157,7 @@ double SphSolver::gather(const Particles& particles) {
     }
   }
   n_active_ghosts_ = active;
+  gradient_cached_ = cached && unchanged;
   return moved2;
 }
 
@@ -154,6 +166,7 @@ void SphSolver::rebuild_neighbours(const Particles& particles) {
   select_ghosts(particles);
   const std::size_t n_ghost = ghost_source_.size();
   const std::size_t n_work = n + n_ghost + n_dummy_;
+  gradient_cached_ = false;  // a new working order and new rows
   work_.resize(n_work);
   work_r_.resize(setup_.options.artificial_stress > 0.0 ? n_work : 0);
   work_wall_.resize(n_work);
@@ -186,6 +199,7 @@ void SphSolver::rebuild_neighbours(const Particles& particles) {
   neighbours_.build(cells_, all_position_, n, cell, n + n_ghost);
   counters_.neighbours_max = std::max(counters_.neighbours_max, neighbours_.max_count());
   neighbours_.drop_lower_pairs(n);  // each soil pair once: the pair loop serves both ends
+  gradient_factor_.resize(n * neighbours_.stride());  // grows only with the rows
   work_reference_.assign(all_position_.begin(), all_position_.end());
   for (std::size_t w = 0; w < geometry_.size(); ++w) wall_reference_[w] = geometry_[w].points;
   rebuild_ = false;
