@@ -1,5 +1,6 @@
 #include "constitutive/drucker_prager.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -76,7 +77,6 @@ DruckerPragerReturn DruckerPrager::return_mapping(const Mat3& trial) const {
   const Mat3 s_trial = deviator(trial);
   const double rho_trial = std::sqrt(0.5 * contract(s_trial, s_trial));  // sqrt(J2)
   r.rho_trial = rho_trial;
-  if (rho_trial > 0.0) r.unit_deviator = (1.0 / (sqrt2 * rho_trial)) * s_trial;
 
   // stress_scale(trial), from the invariants at hand
   const double tolerance = on_surface_tolerance * (std::abs(p_trial) + rho_trial + cone_.k_c);
@@ -122,10 +122,16 @@ void DruckerPrager::record_plastic_step(const Mat3& trial, const DruckerPragerRe
                                         std::span<double> internal) const {
   if (result.regime == DruckerPragerRegime::elastic) return;
   // Plastic strain increment = C^-1 : (sigma_trial - sigma_{n+1}) (eq 3 integrated).
+  // |d_plastic|^2 = |dev d_stress|^2 / (2 G)^2 + 3 (mean d_stress / (3 K))^2, with
+  // |dev d_stress|^2 = |d_stress|^2 - 3 mean^2 (the stress does not depend on it: one square root
+  // and no tensor division per plastic step)
   const Mat3 d_stress = trial - result.stress;
-  const Mat3 d_plastic = deviator(d_stress) / (2.0 * elastic_.shear_modulus()) +
-                         mean_stress(d_stress) / (3.0 * elastic_.bulk_modulus()) * identity3();
-  internal[drucker_prager_plastic_strain] += std::sqrt(2.0 / 3.0 * contract(d_plastic, d_plastic));
+  const double mean = mean_stress(d_stress);
+  const double deviatoric = std::max(contract(d_stress, d_stress) - 3.0 * mean * mean, 0.0);
+  const double two_g = 2.0 * elastic_.shear_modulus();
+  const double three_k = 3.0 * elastic_.bulk_modulus();
+  const double squared = deviatoric / (two_g * two_g) + 3.0 * (mean * mean) / (three_k * three_k);
+  internal[drucker_prager_plastic_strain] += std::sqrt(2.0 / 3.0 * squared);
   if (result.regime != DruckerPragerRegime::cone) internal[drucker_prager_corrections] += 1.0;
 }
 
@@ -159,7 +165,10 @@ Mat6 DruckerPrager::tangent(const Mat3& d_strain, const Mat3& stress,
   const double G = elastic_.shear_modulus();
   const Mat3 trial = stress + elastic_increment(elastic_, d_strain);
   const DruckerPragerReturn r = return_mapping(trial);
-  const Vec6 n = stress_to_voigt(r.unit_deviator);
+  // s_trial / |s_trial| (zero when the trial is isotropic)
+  const Vec6 n = r.rho_trial > 0.0
+                     ? stress_to_voigt((1.0 / (sqrt2 * r.rho_trial)) * deviator(trial))
+                     : Vec6::Zero();
   const Vec6 one = voigt_identity();
 
   switch (r.regime) {

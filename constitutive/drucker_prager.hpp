@@ -40,10 +40,9 @@ enum class DruckerPragerRegime {
 /// Result of one return mapping in the (p, sqrt(J2)) plane.
 struct DruckerPragerReturn {
   DruckerPragerRegime regime = DruckerPragerRegime::elastic;
-  Mat3 stress = Mat3::Zero();         // sigma_{n+1}
-  double d_lambda = 0.0;              // cone multiplier, -
-  double rho_trial = 0.0;             // sqrt(J2) of the trial state, Pa
-  Mat3 unit_deviator = Mat3::Zero();  // s_trial / |s_trial| (zero when the trial is isotropic)
+  Mat3 stress = Mat3::Zero();  // sigma_{n+1}
+  double d_lambda = 0.0;       // cone multiplier, -
+  double rho_trial = 0.0;      // sqrt(J2) of the trial state, Pa
 };
 
 class DruckerPrager final : public Model {
