@@ -79,9 +79,9 @@ Index find_in_row(const Index* row, Index length, Index node) {
 }
 
 // Row k's columns (k, then its neighbours in the order the triangles around k first meet them)
-// into `row` (room for 1 + 2 x its triangles) and, per triangle around k, the positions of its
-// corners in the row: what add_terms needs, set once per mesh. Returns the row's length (0 for
-// a node in no triangle).
+// into `row` (room for 2 + 2 x its triangles: one past the longest row) and, per triangle around k,
+// the positions of its corners in the row: what add_terms needs, set once per mesh. Returns the
+// row's length (0 for a node in no triangle).
 Index collect_row(const std::vector<Triangle>& triangles, std::size_t k, Index* row,
                   SmoothingCells& cells) {
   const Index first = cells.node_triangles.offset[k];
@@ -223,15 +223,17 @@ void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& point
   build_node_triangles(triangles, n_nodes, cells.node_triangles);
 
   // Row k holds k and its distinct neighbours (none for a node in no triangle), at most
-  // 1 + 2 x its triangles: collected per node into that much scratch, then packed.
+  // 1 + 2 x its triangles: collected per node into scratch, then packed.
   const std::ptrdiff_t n = std::ptrdiff_t(n_nodes);
   const NodeTriangles& around = cells.node_triangles;
   cells.offset.resize(n_nodes + 1);
   cells.offset[0] = 0;
   cells.corner_entry.resize(around.triangle.size());
-  cells.row_scratch.resize(n_nodes + 2 * around.triangle.size());
+  // 2 + 2 x its triangles: collect_row writes one past the row's length before it knows
+  // whether the node is new
+  cells.row_scratch.resize(2 * n_nodes + 2 * around.triangle.size());
   const auto scratch_row = [&](std::ptrdiff_t k) {
-    return cells.row_scratch.data() + k + 2 * std::ptrdiff_t(around.offset[std::size_t(k)]);
+    return cells.row_scratch.data() + 2 * k + 2 * std::ptrdiff_t(around.offset[std::size_t(k)]);
   };
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
