@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <tuple>
 
 #include "spfem/smoothing.hpp"
@@ -230,7 +231,12 @@ double add_wall_strip_terms(const WallStrips& strips, const std::vector<Vec2>& p
   }
   const bool to_solo = at_free_slip_wall && solo_area > 0.0;
   const double carrying = to_solo ? solo_area : strip_area;
-  const double wedge_factor = carrying > 0.0 ? wedge / carrying : 0.0;
+  // A strip squeezed to nothing (an edge standing square on the wall: both wall points at one
+  // place) cannot carry the wedge: spread over it, wedge / carrying grew without bound (a front
+  // node of collapse-bui took |b_kk| = 3e14 1/m and the step 6e-17 s). Beyond four times the
+  // carrying area the wedge is dropped, as fill_row drops a layer with no well-shaped triangle.
+  const bool carried = carrying > 0.0 && std::abs(wedge) <= 4.0 * carrying;
+  const double wedge_factor = carried ? wedge / carrying : 0.0;
   Index wall_entry = cells.wall_offset[k];
   for (Index j = first; j < last; ++j, wall_entry += 2) {
     const WallEdge& e = strips.edges[std::size_t(strips.node_edges[std::size_t(j)])];
@@ -253,7 +259,7 @@ double add_wall_strip_terms(const WallStrips& strips, const std::vector<Vec2>& p
       }
     }
   }
-  return strip_area > 0.0 ? strip_area + wedge : 0.0;
+  return strip_area > 0.0 ? strip_area + (carried ? wedge : 0.0) : 0.0;
 }
 
 void size_wall_entries(const WallStrips* strips, std::size_t n_nodes, SmoothingCells& cells) {
