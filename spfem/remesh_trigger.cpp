@@ -14,16 +14,6 @@ constexpr std::ptrdiff_t kParallelMin = 2048;
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-// Smallest angle (deg) from the largest cotangent over the counter-clockwise triangles and the
-// smallest angle over the inverted ones.
-double smallest_degrees(double largest_cot, double inverted_degrees, bool any) {
-  if (!any) return 180.0;
-  const double ccw = largest_cot > -std::numeric_limits<double>::infinity()
-                         ? std::atan2(1.0, largest_cot) / kDegree
-                         : 180.0;  // every triangle inverted or flat
-  return std::min(ccw, inverted_degrees);
-}
-
 }  // namespace
 
 double arm_remesh_trigger(const AlphaMesh& mesh, const std::vector<Vec2>& points, double angle_deg,
@@ -32,32 +22,22 @@ double arm_remesh_trigger(const AlphaMesh& mesh, const std::vector<Vec2>& points
   trigger.cot_limit.resize(mesh.triangles.size());
   const double infinite = std::numeric_limits<double>::infinity();
   const double plain_cot = angle_deg > 0.0 ? 1.0 / std::tan(angle_deg * kDegree) : infinite;
-  double largest_cot = -infinite;
-  double inverted = 180.0;
-#pragma omp parallel for schedule(static) reduction(max            \
-                                                    : largest_cot) \
-    reduction(min                                                  \
-              : inverted) if (n > kParallelMin)
-  for (std::ptrdiff_t e = 0; e < n; ++e) {
-    const AngleSides s = smallest_angle_sides(mesh.triangles[std::size_t(e)], points);
-    if (s.twice_area > 0.0) {
-      largest_cot = std::max(largest_cot, s.along / s.twice_area);
-    } else {
-      inverted = std::min(inverted, std::atan2(s.twice_area, s.along) / kDegree);
-    }
-    double cot = plain_cot;
-    if (fraction > 0.0) {
+  if (fraction > 0.0) {
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+    for (std::ptrdiff_t e = 0; e < n; ++e) {
+      const AngleSides s = smallest_angle_sides(mesh.triangles[std::size_t(e)], points);
       // theta_limit = min(remesh_angle, fraction theta_now); a triangle born flat or inverted
       // (not from a Delaunay mesh) is left to the inversion test
       const double limit =
           s.twice_area > 0.0
               ? std::min(angle_deg * kDegree, fraction * std::atan2(s.twice_area, s.along))
               : 0.0;
-      cot = limit > 0.0 ? 1.0 / std::tan(limit) : infinite;
+      trigger.cot_limit[std::size_t(e)] = limit > 0.0 ? 1.0 / std::tan(limit) : infinite;
     }
-    trigger.cot_limit[std::size_t(e)] = cot;
+  } else {
+    std::fill(trigger.cot_limit.begin(), trigger.cot_limit.end(), plain_cot);
   }
-  return smallest_degrees(largest_cot, inverted, n > 0);
+  return smallest_angle(mesh, points);
 }
 
 bool remesh_due(const AlphaMesh& mesh, const std::vector<Vec2>& points,
@@ -84,7 +64,10 @@ bool remesh_due(const AlphaMesh& mesh, const std::vector<Vec2>& points,
       if (s.twice_area < 0.0 || std::isfinite(trigger.cot_limit[std::size_t(e)])) due = 1;
     }
   }
-  smallest = smallest_degrees(largest_cot, inverted, n > 0);
+  // as smallest_angle(): the counter-clockwise triangles by their largest cotangent, an inverted
+  // one by its (negative) angle
+  const double ccw = largest_cot > -infinite ? std::atan2(1.0, largest_cot) / kDegree : 180.0;
+  smallest = std::min(ccw, inverted);
   return due != 0;
 }
 

@@ -70,14 +70,6 @@ void add_terms(const TriangleTerms& terms, double factor, const std::array<Index
   }
 }
 
-// Position of `node` among the `length` entries of `row`, `length` when absent. No early exit:
-// rows are short (about seven entries) and a data-dependent exit is a mispredicted branch.
-Index find_in_row(const Index* row, Index length, Index node) {
-  Index found = length;
-  for (Index j = 0; j < length; ++j) found = row[j] == node ? j : found;
-  return found;
-}
-
 // Row k's columns (k, then its neighbours in the order the triangles around k first meet them)
 // into `row` (room for 2 + 2 x its triangles: one past the longest row) and, per triangle around k,
 // the positions of its corners in the row: what add_terms needs, set once per mesh. Returns the

@@ -47,6 +47,15 @@ struct SmoothingCells {
   std::vector<std::int32_t> row_scratch;      // the build's rows before packing
 };
 
+/// Position of `node` among the `length` entries of `row` (a row's columns hold each node once),
+/// `length` when absent. No early exit: rows are short (about seven entries) and a data-dependent
+/// exit is a mispredicted branch.
+inline std::int32_t find_in_row(const std::int32_t* row, std::int32_t length, std::int32_t node) {
+  std::int32_t found = length;
+  for (std::int32_t j = 0; j < length; ++j) found = row[j] == node ? j : found;
+  return found;
+}
+
 /// Builds the cells of `mesh` at the current `points`. Reuses the storage of `cells`.
 /// `layer_depth` (m) > 0 adds the boundary layer: each surface edge (a, b) (an edge of exactly one
 /// kept triangle e) owns a strip of that depth outside it, area |ab| depth, half to each of a and

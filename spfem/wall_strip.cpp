@@ -35,8 +35,8 @@ bool is_free_slip_wall(const NodeBoundary& b) {
 // Entry of node `column` in the row between row_begin and row_end (present: the strip's real nodes
 // share the edge's triangle with k).
 Index find_entry(const SmoothingCells& cells, Index row_begin, Index row_end, Index column) {
-  Index entry = row_begin;
-  while (entry < row_end && cells.column[entry] != column) ++entry;
+  const Index entry =
+      row_begin + find_in_row(&cells.column[row_begin], row_end - row_begin, column);
   assert(entry < row_end && "a wall strip node is missing from the row");
   return entry;
 }
