@@ -135,13 +135,29 @@ void DruckerPrager::record_plastic_step(const Mat3& trial, const DruckerPragerRe
   if (result.regime != DruckerPragerRegime::cone) internal[drucker_prager_corrections] += 1.0;
 }
 
-void DruckerPrager::integrate(const Mat3& d_strain, Mat3& stress,
-                              std::span<double> internal) const {
-  const Mat3 trial = stress + elastic_increment(elastic_, d_strain);  // elastic predictor
-  const DruckerPragerReturn result = return_mapping(trial);
+DruckerPragerReturn DruckerPrager::integrate_returning(const Mat3& d_strain, Mat3& stress,
+                                                       std::span<double> internal,
+                                                       Mat3& trial) const {
+  trial = stress + elastic_increment(elastic_, d_strain);  // elastic predictor
+  DruckerPragerReturn result = return_mapping(trial);
   record_plastic_step(trial, result, internal);
   stress = result.stress;
   assert(cone_.yield_function(stress) <= 1e-10 * stress_scale(stress));
+  return result;
+}
+
+void DruckerPrager::integrate(const Mat3& d_strain, Mat3& stress,
+                              std::span<double> internal) const {
+  Mat3 trial;
+  integrate_returning(d_strain, stress, internal, trial);
+}
+
+void DruckerPrager::integrate_with_tangent(const Mat3& d_strain, Mat3& stress,
+                                           std::span<double> internal, Mat6& tangent) const {
+  // The tangent of tangent(d_strain, stress_before), formed from the return just taken.
+  Mat3 trial;
+  const DruckerPragerReturn result = integrate_returning(d_strain, stress, internal, trial);
+  tangent = consistent_tangent(trial, result);
 }
 
 void DruckerPrager::correct(Mat3& stress, std::span<double> internal) const {
@@ -161,10 +177,13 @@ void DruckerPrager::correct(Mat3& stress, std::span<double> internal) const {
 
 Mat6 DruckerPrager::tangent(const Mat3& d_strain, const Mat3& stress,
                             std::span<const double>) const {
+  const Mat3 trial = stress + elastic_increment(elastic_, d_strain);
+  return consistent_tangent(trial, return_mapping(trial));
+}
+
+Mat6 DruckerPrager::consistent_tangent(const Mat3& trial, const DruckerPragerReturn& r) const {
   const double K = elastic_.bulk_modulus();
   const double G = elastic_.shear_modulus();
-  const Mat3 trial = stress + elastic_increment(elastic_, d_strain);
-  const DruckerPragerReturn r = return_mapping(trial);
   // s_trial / |s_trial| (zero when the trial is isotropic)
   const Vec6 n = r.rho_trial > 0.0
                      ? stress_to_voigt((1.0 / (sqrt2 * r.rho_trial)) * deviator(trial))

@@ -57,6 +57,9 @@ class DruckerPrager final : public Model {
                       std::span<const double> internal) const override;
   Mat6 tangent(const Mat3& d_strain, const Mat3& stress,
                std::span<const double> internal) const override;
+  /// integrate() and the consistent tangent of the same return (one return mapping).
+  void integrate_with_tangent(const Mat3& d_strain, Mat3& stress, std::span<double> internal,
+                              Mat6& tangent) const override;
   ElasticModuli moduli(const Mat3& stress, std::span<const double> internal) const override;
   /// Returns a state that drifted outside (a rate-form integrator's step) to the surface with the
   /// same return mapping, treating the given stress as the trial state.
@@ -71,6 +74,12 @@ class DruckerPrager final : public Model {
   double stress_scale(const Mat3& stress) const;
 
  private:
+  /// The body of integrate(): predictor, return, internal variables. Gives back the return and
+  /// the elastic trial stress it started from (in `trial`).
+  DruckerPragerReturn integrate_returning(const Mat3& d_strain, Mat3& stress,
+                                          std::span<double> internal, Mat3& trial) const;
+  /// Consistent tangent d sigma_{n+1} / d eps of the return `r` from `trial` (Voigt).
+  Mat6 consistent_tangent(const Mat3& trial, const DruckerPragerReturn& r) const;
   /// Accumulates plastic strain and corrections from trial -> returned state.
   void record_plastic_step(const Mat3& trial, const DruckerPragerReturn& result,
                            std::span<double> internal) const;

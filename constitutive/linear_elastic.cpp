@@ -37,6 +37,12 @@ Mat6 LinearElastic::tangent(const Mat3&, const Mat3&, std::span<const double>) c
   return elastic_stiffness(elastic_);
 }
 
+void LinearElastic::integrate_with_tangent(const Mat3& d_strain, Mat3& stress,
+                                           std::span<double> internal, Mat6& tangent) const {
+  tangent = elastic_stiffness(elastic_);
+  integrate(d_strain, stress, internal);
+}
+
 ElasticModuli LinearElastic::moduli(const Mat3&, std::span<const double>) const {
   return {elastic_.bulk_modulus(), elastic_.shear_modulus()};
 }

@@ -34,6 +34,8 @@ class LinearElastic final : public Model {
                       std::span<const double> internal) const override;
   Mat6 tangent(const Mat3& d_strain, const Mat3& stress,
                std::span<const double> internal) const override;
+  void integrate_with_tangent(const Mat3& d_strain, Mat3& stress, std::span<double> internal,
+                              Mat6& tangent) const override;
   ElasticModuli moduli(const Mat3& stress, std::span<const double> internal) const override;
 
  private:

@@ -7,6 +7,12 @@ Mat6 Model::tangent(const Mat3& d_strain, const Mat3& stress,
   return finite_difference_tangent(*this, d_strain, stress, internal);
 }
 
+void Model::integrate_with_tangent(const Mat3& d_strain, Mat3& stress, std::span<double> internal,
+                                   Mat6& tangent) const {
+  tangent = this->tangent(d_strain, stress, internal);  // on the state before the increment
+  integrate(d_strain, stress, internal);
+}
+
 Mat6 finite_difference_tangent(const Model& model, const Mat3& d_strain, const Mat3& stress,
                                std::span<const double> internal, double h) {
   const Vec6 e0 = strain_to_voigt(d_strain);

@@ -60,6 +60,15 @@ class Model {
   virtual Mat6 tangent(const Mat3& d_strain, const Mat3& stress,
                        std::span<const double> internal) const;
 
+  /// integrate() and tangent() in one call, for Newton iterations that need both: updates
+  /// `stress` and `internal` exactly as integrate() does (bitwise the same values) and returns in
+  /// `tangent` what tangent(d_strain, stress, internal) returns for the state before the call
+  /// (same Voigt order and conventions). Return-mapping models override it to form the consistent
+  /// tangent from the same return, instead of running the return mapping a second time. The
+  /// default evaluates tangent() on the inputs, then calls integrate().
+  virtual void integrate_with_tangent(const Mat3& d_strain, Mat3& stress,
+                                      std::span<double> internal, Mat6& tangent) const;
+
   /// Elastic moduli at the state, for the time step (sound speed) and stabilisation.
   virtual ElasticModuli moduli(const Mat3& stress, std::span<const double> internal) const = 0;
 

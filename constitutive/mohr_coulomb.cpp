@@ -69,12 +69,25 @@ void MohrCoulomb::record_plastic_step(const Mat3& trial, const StressReturn& res
   internal[mohr_coulomb_corrections] += 1.0;
 }
 
-void MohrCoulomb::integrate(const Mat3& d_strain, Mat3& stress, std::span<double> internal) const {
+StressReturn MohrCoulomb::integrate_returning(const Mat3& d_strain, Mat3& stress,
+                                              std::span<double> internal) const {
   const Mat3 trial = stress + elastic_increment(elastic_, d_strain);  // elastic predictor
-  const StressReturn result = return_mapping(trial);
+  StressReturn result = return_mapping(trial);
   record_plastic_step(trial, result, internal);
   stress = result.stress;
   assert(yield_function(stress) <= 1e-10 * stress_scale(stress));
+  return result;
+}
+
+void MohrCoulomb::integrate(const Mat3& d_strain, Mat3& stress, std::span<double> internal) const {
+  integrate_returning(d_strain, stress, internal);
+}
+
+void MohrCoulomb::integrate_with_tangent(const Mat3& d_strain, Mat3& stress,
+                                         std::span<double> internal, Mat6& tangent) const {
+  // The tangent of tangent(d_strain, stress_before), formed from the return just taken.
+  tangent = consistent_tangent(integrate_returning(d_strain, stress, internal),
+                               elastic_stiffness(elastic_));
 }
 
 void MohrCoulomb::correct(Mat3& stress, std::span<double> internal) const {

@@ -32,6 +32,9 @@ class MohrCoulomb final : public Model {
                       std::span<const double> internal) const override;
   Mat6 tangent(const Mat3& d_strain, const Mat3& stress,
                std::span<const double> internal) const override;
+  /// integrate() and the consistent tangent of the same return (one return mapping).
+  void integrate_with_tangent(const Mat3& d_strain, Mat3& stress, std::span<double> internal,
+                              Mat6& tangent) const override;
   ElasticModuli moduli(const Mat3& stress, std::span<const double> internal) const override;
   /// Returns a drifted state (a rate-form integrator's step) to the surface with the same
   /// return mapping, treating the given stress as the trial state.
@@ -47,6 +50,9 @@ class MohrCoulomb final : public Model {
   const FacetedSurface& surface() const { return surface_; }
 
  private:
+  /// The body of integrate(): predictor, return, internal variables; gives back the return.
+  StressReturn integrate_returning(const Mat3& d_strain, Mat3& stress,
+                                   std::span<double> internal) const;
   void record_plastic_step(const Mat3& trial, const StressReturn& result,
                            std::span<double> internal) const;
 

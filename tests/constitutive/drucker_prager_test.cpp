@@ -1,6 +1,7 @@
 // Unit tests of constitutive/drucker_prager.cpp: one test per regime of the return mapping
 // (elastic, cone, tension cut-off, corner, apex), the consistent tangent against finite
-// differences, the continuum rate (Bui 2008 eqs 8-9), objectivity, and parameter refusal.
+// differences, integrate_with_tangent against integrate and tangent in each regime, the continuum
+// rate (Bui 2008 eqs 8-9), objectivity, and parameter refusal.
 // Closed forms used here are derived in constitutive/docs/drucker_prager.md.
 
 #include "constitutive/drucker_prager.hpp"
@@ -14,6 +15,7 @@
 #include "common/input_error.hpp"
 #include "constitutive/objective.hpp"
 #include "tests/constitutive/refusal.hpp"
+#include "tests/constitutive/same_return.hpp"
 
 namespace duet::constitutive {
 namespace {
@@ -281,6 +283,54 @@ TEST(DruckerPrager, TangentAtApexIsZeroLikeItsFiniteDifference) {
   // Assert: the stress is pinned at the apex, so d sigma / d eps = 0.
   EXPECT_EQ(analytic.norm(), 0.0);
   EXPECT_LT(numeric.norm(), 1e-6 * elastic_stiffness({E, nu}).norm());
+}
+
+TEST(DruckerPrager, IntegrateWithTangentMatchesSeparateCallsWhenElastic) {
+  const auto model = make();
+  const Mat3 stress = -100e3 * Mat3::Identity();
+  const Mat3 d_strain = diagonal(-1e-4, 0.5e-4, 0.0);
+  ASSERT_EQ(model.return_mapping(stress + elastic_increment({E, nu}, d_strain)).regime,
+            DruckerPragerRegime::elastic);
+  expect_integrate_with_tangent_matches(model, d_strain, stress, initial_internal(model));
+}
+
+TEST(DruckerPrager, IntegrateWithTangentMatchesSeparateCallsOnCone) {
+  const auto model = make();
+  const Mat3 stress = general_stress();
+  ASSERT_EQ(model.return_mapping(stress + elastic_increment({E, nu}, shearing_increment())).regime,
+            DruckerPragerRegime::cone);
+  expect_integrate_with_tangent_matches(model, shearing_increment(), stress,
+                                        initial_internal(model));
+}
+
+TEST(DruckerPrager, IntegrateWithTangentMatchesSeparateCallsOnCutoffAndCorner) {
+  // The set-up of ConsistentTangentEqualsFiniteDifferenceOnCutoffAndCorner.
+  auto values = soil();
+  values["tension_cutoff"] = 5e3;
+  const auto model = make(values);
+  Mat3 stress = 2e3 * Mat3::Identity();
+  stress(0, 1) = stress(1, 0) = 1e3;
+  Mat3 small_shear = 1e-3 * Mat3::Identity();
+  small_shear(0, 2) = small_shear(2, 0) = 1e-4;
+  Mat3 large_shear = small_shear;
+  large_shear(0, 2) = large_shear(2, 0) = 2e-3;
+  ASSERT_EQ(model.return_mapping(stress + elastic_increment({E, nu}, small_shear)).regime,
+            DruckerPragerRegime::cutoff);
+  ASSERT_EQ(model.return_mapping(stress + elastic_increment({E, nu}, large_shear)).regime,
+            DruckerPragerRegime::corner);
+  expect_integrate_with_tangent_matches(model, small_shear, stress, initial_internal(model));
+  expect_integrate_with_tangent_matches(model, large_shear, stress, initial_internal(model));
+}
+
+TEST(DruckerPrager, IntegrateWithTangentMatchesSeparateCallsAtApex) {
+  // The set-up of TensileTrialReturnsToApex: isotropic extension past c cot(phi), a little shear.
+  const auto model = make();
+  Mat3 d_strain = 1e-3 * Mat3::Identity();
+  d_strain(0, 1) = d_strain(1, 0) = 1e-5;
+  const DruckerPragerReturn r = model.return_mapping(elastic_increment({E, nu}, d_strain));
+  ASSERT_EQ(r.regime, DruckerPragerRegime::corner);
+  ASSERT_LT(norm(deviator(r.stress)), 1e-12 * model.cone().apex_mean_stress());  // the apex
+  expect_integrate_with_tangent_matches(model, d_strain, Mat3::Zero(), initial_internal(model));
 }
 
 TEST(DruckerPrager, IsotropicTensileTrialReturnsExactlyToApex) {

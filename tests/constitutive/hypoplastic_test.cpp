@@ -13,6 +13,7 @@
 
 #include "common/input_error.hpp"
 #include "constitutive/objective.hpp"
+#include "tests/constitutive/same_return.hpp"
 
 namespace duet::constitutive {
 namespace {
@@ -114,6 +115,14 @@ TEST(Hypoplastic, TangentMatchesFiniteDifferenceOfIntegrateWithShear) {
   EXPECT_LT((analytic - numeric).norm(), 1e-5 * analytic.norm()) << "analytic\n"
                                                                  << analytic << "\nnumeric\n"
                                                                  << numeric;
+}
+
+TEST(Hypoplastic, IntegrateWithTangentByDefaultMatchesSeparateCalls) {
+  // Hypoplastic keeps Model's default: tangent() on the state before, then integrate().
+  const Hypoplastic model(oedometer_row(5e3));
+  Mat3 d_strain;
+  d_strain << -4e-9, 1.5e-9, -1e-9, 1.5e-9, 2e-9, 0.5e-9, -1e-9, 0.5e-9, 1e-9;
+  expect_integrate_with_tangent_matches(model, d_strain, anisotropic_stress(), {0.0});
 }
 
 TEST(Hypoplastic, TangentAppliedToTheIncrementGivesTheRateOfEq15) {

@@ -1,5 +1,6 @@
 // Unit tests of constitutive/linear_elastic.cpp: zero increment, the uniaxial-strain (oedometric)
-// closed form, the tangent against finite differences, and parameter refusal.
+// closed form, the tangent against finite differences, integrate_with_tangent against integrate
+// and tangent, and parameter refusal.
 
 #include "constitutive/linear_elastic.hpp"
 
@@ -9,6 +10,7 @@
 
 #include "common/input_error.hpp"
 #include "tests/constitutive/refusal.hpp"
+#include "tests/constitutive/same_return.hpp"
 
 namespace duet::constitutive {
 namespace {
@@ -81,6 +83,15 @@ TEST(LinearElastic, TangentEqualsFiniteDifference) {
   const Mat6 numeric = finite_difference_tangent(*model, d_strain, stress, {});
   // Assert
   EXPECT_LT((analytic - numeric).norm(), 1e-6 * analytic.norm());
+}
+
+TEST(LinearElastic, IntegrateWithTangentMatchesSeparateCalls) {
+  const auto model = make();
+  Mat3 stress;
+  stress << -1e5, 2e4, 0.0, 2e4, -5e4, 1e3, 0.0, 1e3, -7e4;
+  Mat3 d_strain;
+  d_strain << 1e-4, 2e-5, -3e-5, 2e-5, -2e-4, 1e-5, -3e-5, 1e-5, 5e-5;
+  expect_integrate_with_tangent_matches(*model, d_strain, stress, {});
 }
 
 TEST(LinearElastic, RateEqualsIncrementPerUnitTime) {

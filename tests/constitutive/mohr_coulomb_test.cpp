@@ -1,7 +1,8 @@
 // Unit tests of constitutive/mohr_coulomb.cpp: one test per regime of the return mapping
 // (elastic, main plane, right edge, left edge, apex), the consistent tangent against finite
-// differences, triaxial compression strength against the Mohr-Coulomb closed form, the continuum
-// rate, objectivity under rigid rotation and parameter refusal (constitutive/docs/mohr_coulomb.md).
+// differences, integrate_with_tangent against integrate and tangent in each regime, triaxial
+// compression strength against the Mohr-Coulomb closed form, the continuum rate, objectivity under
+// rigid rotation and parameter refusal (constitutive/docs/mohr_coulomb.md).
 
 #include "constitutive/mohr_coulomb.hpp"
 
@@ -16,6 +17,7 @@
 #include "constitutive/objective.hpp"
 #include "constitutive/tresca.hpp"
 #include "tests/constitutive/refusal.hpp"
+#include "tests/constitutive/same_return.hpp"
 
 namespace duet::constitutive {
 namespace {
@@ -193,6 +195,47 @@ TEST(MohrCoulomb, TangentAtApexIsZeroLikeItsFiniteDifference) {
   EXPECT_EQ(model.tangent(general_increment(), stress, internal), Mat6::Zero());
   EXPECT_LT(finite_difference_tangent(model, general_increment(), stress, internal).norm(),
             1e-9 * E);
+}
+
+TEST(MohrCoulomb, IntegrateWithTangentMatchesSeparateCallsWhenElastic) {
+  const MohrCoulomb model = make();
+  const Mat3 stress = -100e3 * Mat3::Identity();
+  const Mat3 d = 0.1 * general_increment();
+  ASSERT_EQ(model.return_mapping(stress + elastic_increment({E, nu}, d)).principal.regime,
+            PrincipalRegime::elastic);
+  expect_integrate_with_tangent_matches(model, d, stress, initial_internal(model));
+}
+
+TEST(MohrCoulomb, IntegrateWithTangentMatchesSeparateCallsOnMainPlane) {
+  const MohrCoulomb model = make();
+  const Mat3 stress = start_for_trial(main_plane_trial);
+  ASSERT_EQ(regime_of(model, stress), PrincipalRegime::main_plane);
+  expect_integrate_with_tangent_matches(model, general_increment(), stress,
+                                        initial_internal(model));
+}
+
+TEST(MohrCoulomb, IntegrateWithTangentMatchesSeparateCallsOnRightEdge) {
+  const MohrCoulomb model = make();
+  const Mat3 stress = start_for_trial(right_edge_trial);
+  ASSERT_EQ(regime_of(model, stress), PrincipalRegime::right_edge);
+  expect_integrate_with_tangent_matches(model, general_increment(), stress,
+                                        initial_internal(model));
+}
+
+TEST(MohrCoulomb, IntegrateWithTangentMatchesSeparateCallsOnLeftEdge) {
+  const MohrCoulomb model = make();
+  const Mat3 stress = start_for_trial(left_edge_trial);
+  ASSERT_EQ(regime_of(model, stress), PrincipalRegime::left_edge);
+  expect_integrate_with_tangent_matches(model, general_increment(), stress,
+                                        initial_internal(model));
+}
+
+TEST(MohrCoulomb, IntegrateWithTangentMatchesSeparateCallsAtApex) {
+  const MohrCoulomb model = make();
+  const Mat3 stress = start_for_trial(apex_trial);
+  ASSERT_EQ(regime_of(model, stress), PrincipalRegime::apex);
+  expect_integrate_with_tangent_matches(model, general_increment(), stress,
+                                        initial_internal(model));
 }
 
 TEST(MohrCoulomb, TriaxialCompressionStrengthEqualsMohrCoulombClosedForm) {

@@ -1,7 +1,8 @@
 // Unit tests of constitutive/tresca.cpp: one test per regime of the return mapping (elastic, main
 // plane, right edge, left edge) with their closed forms (constitutive/docs/tresca.md), the
-// consistent tangent against finite differences, the continuum rate, objectivity under rigid
-// rotation, the internal variables and parameter refusal.
+// consistent tangent against finite differences, integrate_with_tangent against integrate and
+// tangent in each regime, the continuum rate, objectivity under rigid rotation, the internal
+// variables and parameter refusal.
 
 #include "constitutive/tresca.hpp"
 
@@ -13,6 +14,7 @@
 #include "common/input_error.hpp"
 #include "constitutive/objective.hpp"
 #include "tests/constitutive/refusal.hpp"
+#include "tests/constitutive/same_return.hpp"
 
 namespace duet::constitutive {
 namespace {
@@ -181,6 +183,45 @@ TEST(Tresca, TangentIsElasticStiffnessInElasticRegime) {
   const auto internal = initial_internal(model);
   const Mat6 C = elastic_stiffness({E, nu});
   EXPECT_EQ(model.tangent(0.1 * general_increment(), -100e3 * Mat3::Identity(), internal), C);
+}
+
+TEST(Tresca, IntegrateWithTangentMatchesSeparateCallsWhenElastic) {
+  const Tresca model = make();
+  const Mat3 stress = -100e3 * Mat3::Identity();
+  const Mat3 d = 0.1 * general_increment();
+  ASSERT_EQ(model.return_mapping(stress + elastic_increment({E, nu}, d)).principal.regime,
+            PrincipalRegime::elastic);
+  expect_integrate_with_tangent_matches(model, d, stress, initial_internal(model));
+}
+
+TEST(Tresca, IntegrateWithTangentMatchesSeparateCallsOnMainPlane) {
+  const Tresca model = make();
+  const Mat3 stress = start_for_trial(Vec3(0.0, -100e3, -200e3));
+  ASSERT_EQ(model.return_mapping(stress + elastic_increment({E, nu}, general_increment()))
+                .principal.regime,
+            PrincipalRegime::main_plane);
+  expect_integrate_with_tangent_matches(model, general_increment(), stress,
+                                        initial_internal(model));
+}
+
+TEST(Tresca, IntegrateWithTangentMatchesSeparateCallsOnRightEdge) {
+  const Tresca model = make();
+  const Mat3 stress = start_for_trial(Vec3(0.0, -190e3, -200e3));
+  ASSERT_EQ(model.return_mapping(stress + elastic_increment({E, nu}, general_increment()))
+                .principal.regime,
+            PrincipalRegime::right_edge);
+  expect_integrate_with_tangent_matches(model, general_increment(), stress,
+                                        initial_internal(model));
+}
+
+TEST(Tresca, IntegrateWithTangentMatchesSeparateCallsOnLeftEdge) {
+  const Tresca model = make();
+  const Mat3 stress = start_for_trial(Vec3(0.0, -10e3, -200e3));
+  ASSERT_EQ(model.return_mapping(stress + elastic_increment({E, nu}, general_increment()))
+                .principal.regime,
+            PrincipalRegime::left_edge);
+  expect_integrate_with_tangent_matches(model, general_increment(), stress,
+                                        initial_internal(model));
 }
 
 TEST(Tresca, ContinuumRateIsSmallIncrementLimitOfReturnMapping) {
