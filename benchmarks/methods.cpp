@@ -9,6 +9,7 @@ void register_builtin_methods(MethodRegistry& registry) {
   // One line per method.
   sph::register_sph(registry);
   spfem::register_espfem(registry);
+  spfem::register_ispfem(registry);
 }
 
 const MethodRegistry& builtin_methods() {

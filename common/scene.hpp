@@ -225,12 +225,22 @@ struct SpfemOptions {
   bool boundary_layer = true;
 };
 
-/// [spfem.implicit] (Zhang 2018: Newton-Raphson with load steps and step cutting).
+/// [spfem.implicit] (Zhang 2018: Newton-Raphson with load steps and step cutting). An increment
+/// advances the scene's time by `increment` s (0: end_time / load_steps); adaptive: halved when
+/// Newton fails (up to max_step_cuts times in a row), grown by 1.5 after an increment that
+/// converged within easy_iterations, never beyond its nominal size. Converged when the relative
+/// residual |R_free| / max(|F_ext|, |reaction|) <= tolerance, or when the last correction
+/// |du| / |u| <= displacement_tolerance with the residual within 100 x tolerance (round-off).
 struct SpfemImplicitOptions {
-  double tolerance = 1e-6;
+  double tolerance = 1e-8;
+  double displacement_tolerance = 1e-10;
   int max_iterations = 20;
   int load_steps = 100;
+  double increment = 0.0;  // s; 0 = end_time / load_steps
+  bool adaptive = true;
+  int easy_iterations = 4;
   int max_step_cuts = 5;
+  int active_set_passes = 3;  // contact changes re-solved within one increment
 };
 
 struct Scene {

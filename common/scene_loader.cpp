@@ -56,8 +56,9 @@ const std::vector<std::string> kSpfemKeys = {"alpha_factor",
                                              "stress_increment_limit",
                                              "stiffness_stabilisation",
                                              "remesh_angle_fraction"};
-const std::vector<std::string> kImplicitKeys = {"tolerance", "max_iterations", "load_steps",
-                                                "max_step_cuts"};
+const std::vector<std::string> kImplicitKeys = {
+    "tolerance", "displacement_tolerance", "max_iterations", "load_steps",       "increment",
+    "adaptive",  "easy_iterations",        "max_step_cuts",  "active_set_passes"};
 
 std::string trim(std::string s) {
   const auto not_space = [](unsigned char c) { return !std::isspace(c); };
@@ -429,9 +430,16 @@ SpfemOptions read_spfem(SectionReader& r) {
 SpfemImplicitOptions read_implicit(SectionReader& r) {
   SpfemImplicitOptions o;
   o.tolerance = r.number("tolerance", o.tolerance, positive("a relative residual (-)"));
+  o.displacement_tolerance = r.number("displacement_tolerance", o.displacement_tolerance,
+                                      positive("a relative displacement correction (-)"));
   o.max_iterations = r.integer("max_iterations", o.max_iterations, 1);
   o.load_steps = r.integer("load_steps", o.load_steps, 1);
+  o.increment = r.number("increment", o.increment,
+                         non_negative("an increment of the scene's time (s); 0: from load_steps"));
+  o.adaptive = r.boolean("adaptive", o.adaptive);
+  o.easy_iterations = r.integer("easy_iterations", o.easy_iterations, 1);
   o.max_step_cuts = r.integer("max_step_cuts", o.max_step_cuts, 0);
+  o.active_set_passes = r.integer("active_set_passes", o.active_set_passes, 1);
   r.finish();
   return o;
 }

@@ -64,10 +64,9 @@ double stiffening(const constitutive::ElasticModuli& e, const Mat3& stress) {
 
 }  // namespace
 
-ExplicitSolver::ExplicitSolver(EspfemSetup setup) : setup_(std::move(setup)) {
+ExplicitSolver::ExplicitSolver(EspfemSetup setup)
+    : setup_(std::move(setup)), discretisation_(setup_.options, setup_.spacing, setup_.boundaries) {
   const duet::SpfemOptions& o = setup_.options;
-  if (!(setup_.spacing > 0.0)) throw InputError("spfem: particle spacing must be > 0 m");
-  if (!(o.alpha_factor > 0.0)) throw InputError("spfem.alpha_factor must be > 0");
   if (!(o.time_step_safety > 0.0)) throw InputError("spfem.time_step_safety must be > 0");
   if (!(o.stiffness_stabilisation >= 0.0)) {
     throw InputError("spfem.stiffness_stabilisation must be >= 0");
@@ -87,10 +86,7 @@ void ExplicitSolver::initialise(Particles& particles) {
       throw std::invalid_argument("espfem: internal variable block narrower than the model needs");
     }
   }
-  geometry_.clear();
-  for (const NodeBoundary& b : setup_.boundaries) {
-    geometry_.push_back(orient_boundary(b, particles.position, 2.0 * setup_.spacing));
-  }
+  discretisation_.initialise(particles.position);
   boundary_force_.assign(setup_.boundaries.size(), Vec2::Zero());
   velocity_gradient_.assign(n, Mat2::Zero());
   wave_speed_.assign(n, 0.0);
@@ -104,8 +100,6 @@ void ExplicitSolver::initialise(Particles& particles) {
   external_force_.assign(n, Vec2::Zero());
   scratch_stress_.assign(n, Mat3::Zero());
   scratch_force_.assign(n, Vec2::Zero());
-  have_mesh_ = false;
-  wall_strips_ = WallStrips{};
   counters_ = EspfemCounters{};
   energy_reference_set_ = false;
   timers_.reset();
@@ -118,54 +112,6 @@ void ExplicitSolver::initialise(Particles& particles) {
     block_modulus_[i] = block_modulus(e);
     stiffening_[i] = stiffening(e, particles.stress[i]);
   }
-}
-
-void ExplicitSolver::update_mesh(const Particles& particles) {
-  const duet::SpfemOptions& o = setup_.options;
-  const std::vector<Vec2>& x = particles.position;
-  bool remesh = !have_mesh_ || o.remesh == Remesh::every_step;
-  double angle = 180.0;  // smallest angle of the kept mesh at x (when it was measured)
-  if (!remesh) {
-    // Remesh on angle (spfem/remesh_trigger.hpp): keep the connectivity while every triangle
-    // stays above its limit; an inverted triangle always forces a new mesh.
-    remesh = remesh_due(mesh_, x, remesh_trigger_, angle);
-    if (remesh && angle <= 0.0) ++counters_.forced_remeshes;
-  }
-  if (remesh) {
-    build_alpha_mesh(x, o.alpha_factor * setup_.spacing, mesh_);
-    have_mesh_ = true;
-    ++counters_.remeshes;
-    counters_.triangles = mesh_.triangles.size();
-    counters_.components = mesh_.n_components;
-    counters_.surface_nodes = static_cast<std::size_t>(
-        std::count(mesh_.surface.begin(), mesh_.surface.end(), std::uint8_t{1}));
-    counters_.isolated_nodes_max = std::max(
-        counters_.isolated_nodes_max,
-        static_cast<std::size_t>(std::count(mesh_.component.begin(), mesh_.component.end(), -1)));
-  }
-  // papers/004 smoothing slides: A_k = sum_j A_e^j / 3, b_lh(x_k) = (1/A_k) sum_j A_e^j N_l,h^j
-  // / 3. The particles are cell-centred (the particle at (i + 1/2) dp carries dp^2), so the mesh
-  // through them lies dp/2 inside the material on every face: the boundary layer of depth dp/2
-  // gives the surface cells the skin the mesh misses, so stiffness and the nodes' (particle) mass
-  // agree.
-  const double layer = o.boundary_layer ? 0.5 * setup_.spacing : 0.0;
-  // No-slip walls as wall strips (with the layer): the edges at a wall own the strip to it.
-  const WallStrips* strips = nullptr;
-  if (layer > 0.0) {
-    find_wall_strips(mesh_, x, setup_.boundaries, geometry_, setup_.spacing, layer, wall_strips_);
-    strips = &wall_strips_;
-  }
-  if (remesh) {
-    build_smoothing_cells(mesh_, x, cells_, layer, strips);
-  } else {
-    refill_smoothing_cells(mesh_, x, cells_, layer, strips);  // same triangles: same rows
-  }
-  if (remesh && o.remesh == Remesh::angle) {
-    angle = arm_remesh_trigger(mesh_, x, o.remesh_angle, o.remesh_angle_fraction, remesh_trigger_);
-  } else if (remesh && !mesh_.triangles.empty()) {
-    angle = smallest_angle(mesh_, x);
-  }
-  counters_.smallest_angle = std::min(counters_.smallest_angle, angle);
 }
 
 double ExplicitSolver::time_step(const Particles& particles) {
@@ -184,7 +130,7 @@ double ExplicitSolver::time_step(const Particles& particles) {
   double rate = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : rate) if (n > kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
-    if (stiffening_[k] > 0.0 && cells_.area[k] > 0.0) {
+    if (stiffening_[k] > 0.0 && cells().area[k] > 0.0) {
       const Mat2 d = sym2(velocity_gradient_[k]);
       const Mat2 sigma = particles.stress[k].topLeftCorner<2, 2>();
       if ((sigma.array() * d.array()).sum() > 0.0) rate = std::max(rate, stiffening_[k] * d.norm());
@@ -210,27 +156,27 @@ double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
   // mass, and sqrt(A_k) / c (the former l_min / c) cut dt by the ratio of the two. Two O(nnz)
   // passes, no allocation once sized: w_k = A_k M_k sum_m |b_km| per cell, then each row l
   // gathers w_k |b_kl| through the transpose map.
-  const std::size_t n = cells_.area.size();
+  const std::size_t n = cells().area.size();
   cell_weight_.resize(n);
-  gradient_norm_.resize(cells_.gradient.size());
+  gradient_norm_.resize(cells().gradient.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
     double row_sum = 0.0;
-    for (std::int32_t e = cells_.offset[k]; e < cells_.offset[k + 1]; ++e) {
-      const double norm = cells_.gradient[static_cast<std::size_t>(e)].norm();  // |b_km|
+    for (std::int32_t e = cells().offset[k]; e < cells().offset[k + 1]; ++e) {
+      const double norm = cells().gradient[static_cast<std::size_t>(e)].norm();  // |b_km|
       gradient_norm_[static_cast<std::size_t>(e)] = norm;
       row_sum += norm;
     }
-    cell_weight_[k] = cells_.area[k] * block_modulus_[k] * row_sum;
+    cell_weight_[k] = cells().area[k] * block_modulus_[k] * row_sum;
   }
   double omega_squared = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : omega_squared) if (n > kParallelMin)
   for (std::size_t l = 0; l < n; ++l) {
     double bound = 0.0;
     // Row l lists every k whose cell sees node l; b_kl is entry (k, l), read through transpose.
-    for (std::int32_t e = cells_.offset[l]; e < cells_.offset[l + 1]; ++e) {
-      const auto k = static_cast<std::size_t>(cells_.column[static_cast<std::size_t>(e)]);
-      const auto kl = static_cast<std::size_t>(cells_.transpose[static_cast<std::size_t>(e)]);
+    for (std::int32_t e = cells().offset[l]; e < cells().offset[l + 1]; ++e) {
+      const auto k = static_cast<std::size_t>(cells().column[static_cast<std::size_t>(e)]);
+      const auto kl = static_cast<std::size_t>(cells().transpose[static_cast<std::size_t>(e)]);
       bound += cell_weight_[k] * gradient_norm_[kl];
     }
     omega_squared = std::max(omega_squared, std::abs(bound) / particles.mass[l]);
@@ -260,11 +206,11 @@ double ExplicitSolver::cell_size_time_step(const Particles& particles) const {
   // slivers alone still has a tiny cell and still cuts dt: `gershgorin` does not.) Global minimum
   // against global maximum: conservative where the stiffness varies, which `gershgorin` follows
   // node by node.
-  const std::size_t n = cells_.area.size();
+  const std::size_t n = cells().area.size();
   double smallest_area = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(min : smallest_area) if (n > kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
-    if (cells_.area[k] > 0.0) smallest_area = std::min(smallest_area, cells_.area[k]);
+    if (cells().area[k] > 0.0) smallest_area = std::min(smallest_area, cells().area[k]);
   }
   const double l_min =
       std::isfinite(smallest_area) ? std::sqrt(smallest_area) : setup_.spacing;  // no mesh: dp
@@ -287,7 +233,7 @@ void ExplicitSolver::update_stress(Particles& particles, double dt) {
     const auto m = static_cast<std::size_t>(particles.material[i]);
     const constitutive::Model& model = *setup_.models[m];
     const std::span<double> internal(particles.internal.of(i), n_internal_[m]);
-    if (cells_.area[i] > 0.0) {
+    if (cells().area[i] > 0.0) {
       const Mat3 l = embed(velocity_gradient_[i]);
       const Mat3 d = sym(l);
       // papers/004 explicit cycle step 5: sigma_dot = H(eps_dot, kappa), objective (Jaumann)
@@ -315,14 +261,14 @@ void ExplicitSolver::add_stabilisation(const Particles& particles) {
   const double s = setup_.options.stabilisation;
   const std::vector<Vec2>& x = particles.position;
   const std::vector<Vec2>& v = particles.velocity;
-  const std::size_t n_triangles = mesh_.triangles.size();
+  const std::size_t n_triangles = mesh().triangles.size();
   triangle_stress_.resize(n_triangles);
   triangle_grad_.resize(n_triangles);
   std::vector<double>& area = triangle_area_;
   area.resize(n_triangles);
 #pragma omp parallel for schedule(static) if (n_triangles > kParallelMin)
   for (std::size_t e = 0; e < n_triangles; ++e) {
-    const Triangle& t = mesh_.triangles[e];
+    const Triangle& t = mesh().triangles[e];
     const auto a = static_cast<std::size_t>(t[0]);
     const auto b = static_cast<std::size_t>(t[1]);
     const auto c = static_cast<std::size_t>(t[2]);
@@ -344,11 +290,11 @@ void ExplicitSolver::add_stabilisation(const Particles& particles) {
   for (std::size_t l = 0; l < n; ++l) {
     Vec2 f = Vec2::Zero();
     Mat2 s_l = Mat2::Zero();
-    for (std::int32_t r = cells_.node_triangles.offset[l]; r < cells_.node_triangles.offset[l + 1];
-         ++r) {
+    for (std::int32_t r = cells().node_triangles.offset[l];
+         r < cells().node_triangles.offset[l + 1]; ++r) {
       const auto e =
-          static_cast<std::size_t>(cells_.node_triangles.triangle[static_cast<std::size_t>(r)]);
-      const Triangle& t = mesh_.triangles[e];
+          static_cast<std::size_t>(cells().node_triangles.triangle[static_cast<std::size_t>(r)]);
+      const Triangle& t = mesh().triangles[e];
       const std::size_t k = t[0] == static_cast<std::int32_t>(l)   ? 0
                             : t[1] == static_cast<std::int32_t>(l) ? 1
                                                                    : 2;
@@ -356,24 +302,24 @@ void ExplicitSolver::add_stabilisation(const Particles& particles) {
       s_l += area[e] / 3.0 * triangle_stress_[e];
     }
     stabilisation_force_[l] = f;
-    scratch_stress_[l] = cells_.area[l] > 0.0 ? embed(s_l / cells_.area[l]) : Mat3::Zero();
+    scratch_stress_[l] = cells().area[l] > 0.0 ? embed(s_l / cells().area[l]) : Mat3::Zero();
   }
   // sum_k S_k b_kl = sum_k A_k (S_k / A_k) b_kl: the smoothed internal-force operator
-  internal_forces(cells_, scratch_stress_, scratch_force_);
+  internal_forces(cells(), scratch_stress_, scratch_force_);
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::size_t l = 0; l < n; ++l) stabilisation_force_[l] -= scratch_force_[l];
 }
 
 void ExplicitSolver::assemble_forces(const Particles& particles) {
   // papers/004 explicit cycle step 6: F_int = sum_k B_k^T sigma_k A_k
-  internal_forces(cells_, particles.stress, internal_force_);
-  if (setup_.options.stabilisation > 0.0 && !mesh_.triangles.empty()) {
+  internal_forces(cells(), particles.stress, internal_force_);
+  if (setup_.options.stabilisation > 0.0 && !mesh().triangles.empty()) {
     add_stabilisation(particles);
   } else {
     std::fill(stabilisation_force_.begin(), stabilisation_force_.end(), Vec2::Zero());
   }
   stiffness_energy_ = 0.0;
-  if (setup_.options.stiffness_stabilisation > 0.0 && !mesh_.triangles.empty()) {
+  if (setup_.options.stiffness_stabilisation > 0.0 && !mesh().triangles.empty()) {
     // Stiffness stabilisation on the nodes' initial positions x - u (the displacement is
     // measured from the start of the run, after any gravity loading)
     const std::size_t n = particles.size();
@@ -382,7 +328,7 @@ void ExplicitSolver::assemble_forces(const Particles& particles) {
       reference_position_[i] = particles.position[i] - particles.displacement[i];
     }
     stiffness_energy_ = stiffness_stabilisation_forces(
-        mesh_.triangles, cells_.node_triangles, reference_position_, particles.position,
+        mesh().triangles, cells().node_triangles, reference_position_, particles.position,
         block_modulus_, setup_.options.stiffness_stabilisation, stiffness_scratch_,
         stiffness_force_);
     // stabilisation_force_ is subtracted in M a = ... - F_stab, stiffness_force_ = -dW/dx acts
@@ -395,13 +341,9 @@ void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
   const duet::SpfemOptions& o = setup_.options;
   const std::size_t n = particles.size();
   const std::size_t n_boundaries = setup_.boundaries.size();
-  for (std::size_t b = 0; b < n_boundaries; ++b) {
-    update_geometry(setup_.boundaries[b], std::max(time, 0.0), geometry_[b]);
-    if (settling_) {
-      std::fill(geometry_[b].point_velocity.begin(), geometry_[b].point_velocity.end(),
-                Vec2::Zero());
-    }
-  }
+  discretisation_.place_boundaries(time, settling_);
+  const std::vector<BoundaryGeometry>& geometry = discretisation_.geometry();
+  const WallStrips& wall_strips = discretisation_.wall_strips();
   const double reach = 0.5 * setup_.spacing * (1.0 + 1e-6);
   const double depth = setup_.spacing;
   const double viscous = o.damping + damping_;
@@ -431,12 +373,12 @@ void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
       Vec2 v_new = v + dt * f / m;  // central difference: velocity first
       found.clear();
       for (std::size_t b = 0; b < n_boundaries; ++b) {
-        find_contacts(geometry_[b], setup_.boundaries[b].rigid_body, static_cast<std::int32_t>(i),
+        find_contacts(geometry[b], setup_.boundaries[b].rigid_body, static_cast<std::int32_t>(i),
                       static_cast<std::int32_t>(b), particles.position[i], reach, depth, found);
       }
       for (const NodeContact& c : found) {
         const NodeBoundary& b = setup_.boundaries[static_cast<std::size_t>(c.boundary)];
-        if (held_by_wall_strip(wall_strips_, c)) continue;  // its wall strip carries it
+        if (held_by_wall_strip(wall_strips, c)) continue;  // its wall strip carries it
         const Vec2 dv = constrain_velocity(c, b.condition, b.friction, v_new);
         // Force of the soil on the boundary: m (a_free - a_constrained)
         my_impulse[c.boundary] -= m * dv / dt;
@@ -460,7 +402,7 @@ void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
     boundary_force_[b] = f;
   }
   // Wall strips: the soil pushes each wall point with -F_w (force of the soil on the wall)
-  add_wall_strip_reactions(wall_strips_, cells_, particles.stress, boundary_force_);
+  add_wall_strip_reactions(wall_strips, discretisation_.cells(), particles.stress, boundary_force_);
   counters_.contacts_max = std::max(counters_.contacts_max, n_contacts);
 }
 
@@ -470,8 +412,8 @@ double ExplicitSolver::energy(const Particles& particles) const {
 #pragma omp parallel for schedule(static) reduction(+ : e) if (n > kParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
     e += 0.5 * particles.mass[i] * particles.velocity[i].squaredNorm();
-    if (i < cells_.area.size()) {
-      e += 0.5 * cells_.area[i] * contract(particles.stress[i], particles.strain[i]);
+    if (i < cells().area.size()) {
+      e += 0.5 * cells().area[i] * contract(particles.stress[i], particles.strain[i]);
     }
   }
   return e;
@@ -481,21 +423,15 @@ double ExplicitSolver::step(Particles& particles, double time) {
   {
     ScopedTimer t(timers_, Phase::mesh);
     // The walls at t, for the wall strips of this step (integrate() reads the same geometry)
-    for (std::size_t b = 0; b < setup_.boundaries.size(); ++b) {
-      update_geometry(setup_.boundaries[b], std::max(time, 0.0), geometry_[b]);
-      if (settling_) {
-        std::fill(geometry_[b].point_velocity.begin(), geometry_[b].point_velocity.end(),
-                  Vec2::Zero());
-      }
-    }
-    update_mesh(particles);
+    discretisation_.place_boundaries(time, settling_);
+    discretisation_.update(particles.position);
   }
   double dt = 0.0;
   {
     ScopedTimer t(timers_, Phase::constitutive);
     // papers/004 explicit cycle step 4: smoothed strain (rate) of the nodes, before dt, which
     // the stress increment it gives also bounds
-    smoothed_velocity_gradients(cells_, particles.velocity, velocity_gradient_);
+    smoothed_velocity_gradients(cells(), particles.velocity, velocity_gradient_);
     dt = time_step(particles);
     update_stress(particles, dt);
   }
@@ -545,22 +481,23 @@ void ExplicitSolver::settle(Particles& particles, double duration, double dampin
 
 Json ExplicitSolver::diagnostics() const {
   const EspfemCounters& c = counters_;
+  const MeshCounters& m = discretisation_.counters();
   Json j = Json::object();
   j["steps"] = c.steps;
-  j["remeshes"] = c.remeshes;
-  j["forced_remeshes"] = c.forced_remeshes;
+  j["remeshes"] = m.remeshes;
+  j["forced_remeshes"] = m.forced_remeshes;
   j["remesh"] = to_string(setup_.options.remesh);
   j["remesh_angle"] = setup_.options.remesh_angle;
   j["remesh_angle_fraction"] = setup_.options.remesh_angle_fraction;
-  j["triangles"] = static_cast<long>(c.triangles);
-  j["surface_nodes"] = static_cast<long>(c.surface_nodes);
-  j["components"] = static_cast<long>(c.components);
-  j["isolated_nodes_max"] = static_cast<long>(c.isolated_nodes_max);
+  j["triangles"] = static_cast<long>(m.triangles);
+  j["surface_nodes"] = static_cast<long>(m.surface_nodes);
+  j["components"] = static_cast<long>(m.components);
+  j["isolated_nodes_max"] = static_cast<long>(m.isolated_nodes_max);
   j["dt_min"] = c.dt_min;
   j["dt_max"] = c.dt_max;
-  j["smallest_angle"] = c.smallest_angle;
+  j["smallest_angle"] = m.smallest_angle;
   j["contacts_max"] = c.contacts_max;
-  j["wall_strip_edges"] = static_cast<long>(wall_strips_.edges.size());
+  j["wall_strip_edges"] = static_cast<long>(discretisation_.wall_strips().edges.size());
   j["stabilisation"] = setup_.options.stabilisation;
   j["stiffness_stabilisation"] = setup_.options.stiffness_stabilisation;
   j["stiffness_stabilisation_energy"] = stiffness_energy_;

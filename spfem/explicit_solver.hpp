@@ -18,12 +18,9 @@
 #include "common/tensor.hpp"
 #include "common/timers.hpp"
 #include "constitutive/model.hpp"
-#include "spfem/alpha_mesh.hpp"
+#include "spfem/nodal_discretisation.hpp"
 #include "spfem/node_contact.hpp"
-#include "spfem/remesh_trigger.hpp"
-#include "spfem/smoothing.hpp"
 #include "spfem/stiffness_stabilisation.hpp"
-#include "spfem/wall_strip.hpp"
 
 namespace duet::spfem {
 
@@ -39,17 +36,11 @@ struct EspfemSetup {
   std::vector<NodeBoundary> boundaries;                      // walls, then rigid bodies
 };
 
+/// The step's counters; the mesh's are in NodalDiscretisation::counters().
 struct EspfemCounters {
   long steps = 0;
-  long remeshes = 0;
-  long forced_remeshes = 0;  // angle trigger found an inverted triangle
-  std::size_t triangles = 0;
-  std::size_t surface_nodes = 0;
-  int components = 0;
-  std::size_t isolated_nodes_max = 0;
   double dt_min = 0.0;
   double dt_max = 0.0;
-  double smallest_angle = 180.0;  // deg, smallest seen on a mesh in use
   long contacts_max = 0;
   double energy_reference = 0.0;  // kinetic + 0.5 sum A_k sigma:eps after the first step
   double energy_drift_max = 0.0;  // max |E - E_ref| / E_ref since then
@@ -76,11 +67,12 @@ class ExplicitSolver {
 
   /// Force of the soil on each boundary of the setup (N/m), in the order of setup.boundaries.
   const std::vector<Vec2>& boundary_forces() const { return boundary_force_; }
-  const std::vector<NodeBoundary>& boundaries() const { return setup_.boundaries; }
+  const std::vector<NodeBoundary>& boundaries() const { return discretisation_.boundaries(); }
   const Timers& timers() const { return timers_; }
   const EspfemCounters& counters() const { return counters_; }
-  const AlphaMesh& mesh() const { return mesh_; }
-  const SmoothingCells& cells() const { return cells_; }
+  const AlphaMesh& mesh() const { return discretisation_.mesh(); }
+  const SmoothingCells& cells() const { return discretisation_.cells(); }
+  const NodalDiscretisation& discretisation() const { return discretisation_; }
   /// Kinetic energy plus 0.5 sum_k A_k sigma_k : eps_k (the stored energy of a linear elastic
   /// body from a stress-free state), on the current mesh, plus the stiffness stabilisation's
   /// energy W at the positions of the last force evaluation.
@@ -89,7 +81,6 @@ class ExplicitSolver {
   Json diagnostics() const;
 
  private:
-  void update_mesh(const Particles& particles);
   double time_step(const Particles& particles);
   double cell_size_time_step(const Particles& particles) const;
   double gershgorin_time_step(const Particles& particles);
@@ -99,10 +90,7 @@ class ExplicitSolver {
   void integrate(Particles& particles, double time, double dt);
 
   EspfemSetup setup_;
-  AlphaMesh mesh_;
-  SmoothingCells cells_;
-  RemeshTrigger remesh_trigger_;  // remesh = angle: the limits of the kept triangles
-  bool have_mesh_ = false;
+  NodalDiscretisation discretisation_;   // boundaries, mesh, wall strips, smoothing cells
   std::vector<std::size_t> n_internal_;  // per material
 
   std::vector<Mat2> velocity_gradient_;
@@ -126,9 +114,6 @@ class ExplicitSolver {
   StiffnessStabilisationScratch stiffness_scratch_;
   double stiffness_energy_ = 0.0;  // W at the last force evaluation (J/m)
 
-  std::vector<BoundaryGeometry> geometry_;
-  std::vector<NodeContact> contacts_;
-  WallStrips wall_strips_;  // no-slip walls as strips of the smoothing (spfem/wall_strip.hpp)
   std::vector<Vec2> boundary_force_;
 
   double damping_ = 0.0;  // 1/s, only while settling

@@ -9,6 +9,7 @@
 #include "common/scene_loads.hpp"
 #include "constitutive/registry.hpp"
 #include "spfem/explicit_solver.hpp"
+#include "spfem/implicit_solver.hpp"
 
 namespace duet::spfem {
 
@@ -26,8 +27,10 @@ NodeCondition condition_of(Surface surface) {
   return NodeCondition::rough;
 }
 
-EspfemSetup make_setup(const Scene& scene) {
-  EspfemSetup setup;
+/// The models and boundaries of the scene, as both SPFEM solvers see them.
+template <typename Setup>
+Setup make_setup(const Scene& scene) {
+  Setup setup;
   setup.options = scene.spfem;
   setup.spacing = scene.spacing;
   setup.gravity = scene.gravity;
@@ -64,9 +67,23 @@ EspfemSetup make_setup(const Scene& scene) {
   return setup;
 }
 
+IspfemSetup make_implicit_setup(const Scene& scene) {
+  IspfemSetup setup = make_setup<IspfemSetup>(scene);
+  setup.implicit = scene.spfem_implicit;
+  return setup;
+}
+
+std::vector<Reaction> named_reactions(const std::vector<NodeBoundary>& boundaries,
+                                      const std::vector<Vec2>& forces) {
+  std::vector<Reaction> out;
+  for (std::size_t b = 0; b < boundaries.size(); ++b)
+    out.push_back({boundaries[b].name, forces[b]});
+  return out;
+}
+
 class EspfemMethod final : public Solver {
  public:
-  explicit EspfemMethod(const Scene& scene) : solver_(make_setup(scene)) {}
+  explicit EspfemMethod(const Scene& scene) : solver_(make_setup<EspfemSetup>(scene)) {}
 
   void initialise(const Scene& scene, Particles& particles) override {
     solver_.initialise(particles);
@@ -83,11 +100,7 @@ class EspfemMethod final : public Solver {
   }
 
   std::vector<Reaction> reactions() const override {
-    std::vector<Reaction> out;
-    for (std::size_t b = 0; b < solver_.boundaries().size(); ++b) {
-      out.push_back({solver_.boundaries()[b].name, solver_.boundary_forces()[b]});
-    }
-    return out;
+    return named_reactions(solver_.boundaries(), solver_.boundary_forces());
   }
 
   const Timers& timers() const override { return solver_.timers(); }
@@ -99,12 +112,54 @@ class EspfemMethod final : public Solver {
   LoadedParticles loaded_;
 };
 
+/// The implicit SPFEM: one step of the driver is one converged increment.
+class IspfemMethod final : public Solver {
+ public:
+  explicit IspfemMethod(const Scene& scene) : solver_(make_implicit_setup(scene)) {}
+
+  void initialise(const Scene& scene, Particles& particles) override {
+    solver_.initialise(particles);
+    loaded_ = loaded_particles(scene, particles);
+    solver_.set_loads([this, &scene](double t, std::vector<Vec2>& force) {
+      apply_loads(scene, loaded_, t, force);
+    });
+    if (scene.initial_stress.kind == InitialStressKind::gravity_loading) {
+      solver_.settle(particles, kSettleIncrements);
+    }
+  }
+
+  double step(const Scene& scene, Particles& particles, double time) override {
+    return solver_.step(particles, time, scene.time.end_time);
+  }
+
+  std::vector<Reaction> reactions() const override {
+    return named_reactions(solver_.boundaries(), solver_.boundary_forces());
+  }
+
+  const Timers& timers() const override { return solver_.timers(); }
+
+  Json diagnostics() const override { return solver_.diagnostics(); }
+
+ private:
+  // Gravity loading: gravity in this many equal increments to a static equilibrium
+  static constexpr int kSettleIncrements = 10;
+  ImplicitSolver solver_;
+  LoadedParticles loaded_;
+};
+
 }  // namespace
 
 void register_espfem(MethodRegistry& registry) {
   registry.add({"espfem",
                 "explicit smoothed particle finite element method (Yuan et al. 2019; papers/004)",
                 [](const Scene& scene) { return std::make_unique<EspfemMethod>(scene); }});
+}
+
+void register_ispfem(MethodRegistry& registry) {
+  registry.add({"ispfem",
+                "implicit (Newton-Raphson) smoothed particle finite element method, quasi-static "
+                "(Zhang, Yuan & Dai 2018; papers/004)",
+                [](const Scene& scene) { return std::make_unique<IspfemMethod>(scene); }});
 }
 
 }  // namespace duet::spfem

@@ -9,8 +9,12 @@ namespace duet::spfem {
 /// Adds {"espfem", ..., make} to the registry.
 void register_espfem(MethodRegistry& registry);
 
+/// Adds {"ispfem", ..., make} to the registry: the implicit SPFEM (spfem/implicit_solver.hpp).
+void register_ispfem(MethodRegistry& registry);
+
 }  // namespace duet::spfem
 
 namespace duet {
 using spfem::register_espfem;
+using spfem::register_ispfem;
 }  // namespace duet

@@ -163,6 +163,7 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
       }
     }
     add_terms(terms, factor, cells.corner_entry[i], cells);
+    cells.triangle_weight[i] = factor * terms.area / 3.0;
   }
   if (n_incoming == 1 && n_outgoing == 1) {
     const double turn = std::atan2(cross(incoming, outgoing), incoming.dot(outgoing));
@@ -186,6 +187,7 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
       const TriangleTerms& terms = cells.triangle_terms[cells.node_triangles.triangle[i]];
       if (2.0 * terms.area >= depth * longest_edge(t, points)) {
         add_terms(terms, spread / well_area, cells.corner_entry[i], cells);
+        cells.triangle_weight[i] += spread / well_area * terms.area / 3.0;
       }
     }
   } else {
@@ -306,6 +308,57 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
   }
 }
 
+void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, std::size_t k,
+                             double layer_depth, WallStrips* walls, double h, SmoothingCells& cells,
+                             std::vector<Vec2>& out) {
+  const std::vector<Triangle>& triangles = mesh.triangles;
+  const bool on_surface = mesh.surface.size() != points.size() || mesh.surface[k] != 0;
+  const WallStrips* strips =
+      layer_depth > 0.0 && walls != nullptr && !walls->edges.empty() ? walls : nullptr;
+  const Index begin = cells.offset[k];
+  const Index length = cells.offset[k + 1] - begin;
+  out.assign(std::size_t(length * length * 2), Vec2::Zero());
+  const auto retriangulate = [&] {
+    for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
+      const Index e = cells.node_triangles.triangle[i];
+      cells.triangle_terms[e] = triangle_terms(triangles[e], points);
+    }
+  };
+  // Moves node m (and the free-slip wall points that move with it) by d
+  const auto move = [&](Index m, const Vec2& d) {
+    points[m] += d;
+    if (strips == nullptr) return;
+    for (WallEdge& e : walls->edges) {
+      if (!e.free_slip) continue;
+      if (e.a == m) e.a_wall += d;
+      if (e.b == m) e.b_wall += d;
+    }
+  };
+  std::vector<Vec2> forward(static_cast<std::size_t>(length));
+  for (Index jm = 0; jm < length; ++jm) {
+    const Index m = cells.column[begin + jm];
+    for (int c = 0; c < 2; ++c) {
+      Vec2 d = Vec2::Zero();
+      d[c] = h;
+      move(m, d);
+      retriangulate();
+      fill_row(triangles, points, k, layer_depth, on_surface, strips, cells);
+      for (Index jl = 0; jl < length; ++jl)
+        forward[jl] = cells.area[k] * cells.gradient[begin + jl];
+      move(m, -2.0 * d);
+      retriangulate();
+      fill_row(triangles, points, k, layer_depth, on_surface, strips, cells);
+      for (Index jl = 0; jl < length; ++jl) {
+        out[std::size_t((jl * length + jm) * 2 + c)] =
+            (forward[jl] - cells.area[k] * cells.gradient[begin + jl]) / (2.0 * h);
+      }
+      move(m, d);
+    }
+  }
+  retriangulate();
+  fill_row(triangles, points, k, layer_depth, on_surface, strips, cells);
+}
+
 void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
                             SmoothingCells& cells, double layer_depth, const WallStrips* walls) {
   // Fill pass: each row written by one thread only, into the entries the build laid out for
@@ -323,6 +376,7 @@ void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& poin
   const std::vector<Triangle>& triangles = mesh.triangles;
   const std::ptrdiff_t n_triangles = std::ptrdiff_t(triangles.size());
   cells.triangle_terms.resize(triangles.size());
+  cells.triangle_weight.resize(cells.node_triangles.triangle.size());
 #pragma omp parallel for schedule(static) if (n_triangles > kParallelMin)
   for (std::ptrdiff_t e = 0; e < n_triangles; ++e) {
     cells.triangle_terms[std::size_t(e)] = triangle_terms(triangles[std::size_t(e)], points);

@@ -44,7 +44,12 @@ struct SmoothingCells {
   // t[0], t[1], t[2] in row k, so that a refill adds without searching the row.
   std::vector<std::array<std::int32_t, 3>> corner_entry;
   std::vector<TriangleTerms> triangle_terms;  // per triangle of the mesh, at the last fill
-  std::vector<std::int32_t> row_scratch;      // the build's rows before packing
+  // Per entry r of node_triangles (triangle e around node k): the weight w_ke with which e's
+  // element gradients enter row k, A_k b_kl = sum_e w_ke grad N_l^e (+ wall-strip terms): A_e / 3,
+  // plus the boundary-layer strips and wedge e carries at k. The implicit solver's geometric
+  // stiffness reads it.
+  std::vector<double> triangle_weight;
+  std::vector<std::int32_t> row_scratch;  // the build's rows before packing
 };
 
 /// Position of `node` among the `length` entries of `row` (a row's columns hold each node once),
@@ -77,6 +82,17 @@ void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& point
 void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
                             SmoothingCells& cells, double layer_depth = 0.0,
                             const WallStrips* walls = nullptr);
+
+/// d(A_k b_kl) / dx_m for every entry l and every entry m of row k (row k's terms depend only on
+/// the nodes of its row): out[(l * len + m) * 2 + c] = d(A_k b_kl) / d(x_m)_c, len the row's
+/// length, by central differences of step `h` (m) of the row's own construction (boundary layer,
+/// wedge and wall strips included; a free-slip strip's wall points move with their nodes, a
+/// no-slip strip's stay). `cells` must have been filled from `mesh` at `points`; `points` and the
+/// strips' wall points are perturbed and restored, and row k is refilled at the end (bitwise as
+/// before). Serial: it writes the triangle terms shared with the neighbouring rows.
+void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, std::size_t k,
+                             double layer_depth, WallStrips* walls, double h, SmoothingCells& cells,
+                             std::vector<Vec2>& out);
 
 /// L_k(i, j) = dv_i/dx_j = sum_l v_l,i b_kl,j (+ sum_w v_w,i c_kw,j: wall strips) at every node
 /// (zero for a node in no triangle).

@@ -1,0 +1,441 @@
+#include "spfem/implicit_solver.hpp"
+
+#include <Eigen/UmfPackSupport>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "common/input_error.hpp"
+#include "common/solver.hpp"
+#include "spfem/increment_operator.hpp"
+
+namespace duet::spfem {
+
+namespace {
+
+// Newton step halvings a line search may take before it accepts the step anyway
+constexpr int kLineSearchHalvings = 4;
+
+std::string format_residuals(const std::vector<double>& r) {
+  std::ostringstream out;
+  out.precision(3);
+  const std::size_t first = r.size() > 6 ? r.size() - 6 : 0;
+  for (std::size_t i = first; i < r.size(); ++i) out << (i > first ? ", " : "") << r[i];
+  return out.str();
+}
+
+}  // namespace
+
+ImplicitSolver::ImplicitSolver(IspfemSetup setup)
+    : setup_(std::move(setup)), discretisation_(setup_.options, setup_.spacing, setup_.boundaries) {
+  const duet::SpfemImplicitOptions& o = setup_.implicit;
+  if (!(o.tolerance > 0.0)) throw InputError("spfem.implicit.tolerance must be > 0");
+  if (!(o.displacement_tolerance > 0.0)) {
+    throw InputError("spfem.implicit.displacement_tolerance must be > 0");
+  }
+  if (o.max_iterations < 1) throw InputError("spfem.implicit.max_iterations must be >= 1");
+  if (o.load_steps < 1) throw InputError("spfem.implicit.load_steps must be >= 1");
+  if (!(o.increment >= 0.0)) throw InputError("spfem.implicit.increment must be >= 0 s");
+}
+
+void ImplicitSolver::initialise(Particles& particles) {
+  const std::size_t n = particles.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const int m = particles.material[i];
+    if (m < 0 || static_cast<std::size_t>(m) >= setup_.models.size()) {
+      throw std::invalid_argument("ispfem: particle without a material model");
+    }
+    if (setup_.models[std::size_t(m)]->internal_variables().size() > particles.internal.width) {
+      throw std::invalid_argument("ispfem: internal variable block narrower than the model needs");
+    }
+  }
+  discretisation_.initialise(particles.position);
+  released_.assign(n, 0);
+  previous_u_.assign(n, Vec2::Zero());
+  previous_increment_ = 0.0;
+  increment_ = 0.0;
+  external_force_.assign(n, Vec2::Zero());
+  boundary_force_.assign(setup_.boundaries.size(), Vec2::Zero());
+  counters_ = NewtonCounters{};
+  timers_.reset();
+}
+
+std::vector<NodeConstraint> ImplicitSolver::find_constraints(const std::vector<Vec2>& x, double t0,
+                                                             double t1, bool crossed_only) const {
+  // The touch of node_contact.hpp, as the explicit solver finds it: within dp/2 of a segment on
+  // the soil side (the lattice puts the first row of nodes there), or crossed by less than dp.
+  const double reach = 0.5 * setup_.spacing * (1.0 + 1e-6);
+  const double depth = setup_.spacing;
+  const std::vector<NodeBoundary>& boundaries = discretisation_.boundaries();
+  const std::vector<BoundaryGeometry>& geometry = discretisation_.geometry();
+  std::vector<NodeConstraint> out;
+  std::vector<NodeContact> found;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    for (std::size_t b = 0; b < boundaries.size(); ++b) {
+      const NodeBoundary& boundary = boundaries[b];
+      if (released_[i] != 0 && boundary.condition != NodeCondition::bonded) continue;
+      found.clear();
+      find_contacts(geometry[b], boundary.rigid_body, std::int32_t(i), std::int32_t(b), x[i], reach,
+                    depth, found);
+      for (const NodeContact& c : found) {
+        if (crossed_only && !(c.distance < 0.0)) continue;
+        NodeConstraint k;
+        k.node = c.node;
+        k.boundary = c.boundary;
+        k.kind = constraint_kind(boundary.condition);
+        k.normal = c.normal;
+        k.increment =
+            settling_ ? Vec2(Vec2::Zero()) : boundary_displacement(boundary, t0, t1, c.point);
+        out.push_back(k);
+      }
+    }
+  }
+  return out;
+}
+
+ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, double t0,
+                                                        double t1) {
+  const duet::SpfemImplicitOptions& o = setup_.implicit;
+  const std::size_t n = particles.size();
+  Attempt attempt;
+  {
+    ScopedTimer t(timers_, Phase::mesh);
+    // Mesh, wall strips and smoothing cells on the configuration at the increment's start
+    discretisation_.place_boundaries(t0, settling_);
+    discretisation_.update(particles.position);
+  }
+  const SmoothingCells& cells = discretisation_.cells();
+  std::vector<std::uint8_t> held(n, 0);  // in no triangle: nothing holds it, it stays put
+  for (std::size_t i = 0; i < n; ++i) held[i] = cells.area[i] > 0.0 ? 0 : 1;
+
+  // Contacts at the start; a released node is let go until it no longer touches any boundary
+  std::vector<std::uint8_t> released_before = released_;
+  std::fill(released_.begin(), released_.end(), 0);
+  std::vector<NodeConstraint> all = find_constraints(particles.position, t0, t1, false);
+  std::vector<std::uint8_t> touching(n, 0);
+  for (const NodeConstraint& c : all) touching[std::size_t(c.node)] = 1;
+  for (std::size_t i = 0; i < n; ++i) released_[i] = released_before[i] && touching[i];
+  std::vector<NodeConstraint> constraints;
+  for (const NodeConstraint& c : all) {
+    const bool bonded =
+        discretisation_.boundaries()[std::size_t(c.boundary)].condition == NodeCondition::bonded;
+    if (bonded || released_[std::size_t(c.node)] == 0) constraints.push_back(c);
+  }
+
+  // F_ext at the end of the increment: the scene's loads and gravity
+  if (loads_) {
+    loads_(t1, external_force_);
+  } else {
+    std::fill(external_force_.begin(), external_force_.end(), Vec2::Zero());
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    external_force_[i] += gravity_factor_ * particles.mass[i] * setup_.gravity;
+  }
+  double external_norm = 0.0;
+  for (const Vec2& f : external_force_) external_norm += f.squaredNorm();
+  external_norm = std::sqrt(external_norm);
+
+  // The wall strips' wall points move with their walls over the increment
+  const WallStrips& strips = discretisation_.wall_strips();
+  std::vector<Vec2> wall_increment(2 * strips.edges.size(), Vec2::Zero());
+  for (std::size_t e = 0; e < strips.edges.size() && !settling_; ++e) {
+    const WallEdge& edge = strips.edges[e];
+    if (edge.free_slip) continue;
+    const NodeBoundary& b = discretisation_.boundaries()[std::size_t(edge.boundary)];
+    wall_increment[2 * e] = boundary_displacement(b, t0, t1, edge.a_wall);
+    wall_increment[2 * e + 1] = boundary_displacement(b, t0, t1, edge.b_wall);
+  }
+  IncrementOperator op(discretisation_, setup_.models, particles, wall_increment, &timers_);
+  const double scale_dt = previous_increment_ > 0.0 ? (t1 - t0) / previous_increment_ : 0.0;
+
+  for (int pass = 0; pass < o.active_set_passes; ++pass) {
+    const DofMap dofs = eliminate(n, constraints, held);
+    long n_constrained = 0;
+    for (std::size_t i = 0; i < n; ++i) n_constrained += dofs.constrained[i] && !held[i];
+    counters_.constrained_nodes_max = std::max(counters_.constrained_nodes_max, n_constrained);
+    if (n_constrained == 0) {
+      std::ostringstream why;
+      why << "ispfem: no wall or rigid body holds any node at t = " << t0
+          << " s: the quasi-static tangent is singular (the body can move as a rigid body)";
+      throw NumericalFailure(why.str());
+    }
+    // Start: the prescribed motion, and the last increment's motion (scaled) on the free dofs
+    std::vector<Vec2> u(n, Vec2::Zero());
+    for (std::size_t i = 0; i < n; ++i) {
+      u[i] = dofs.prescribed[i];
+      for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
+        const Vec2& d = dofs.direction[std::size_t(a)];
+        u[i] += scale_dt * previous_u_[i].dot(d) * d;
+      }
+    }
+    Eigen::UmfPackLU<SparseMatrix> lu;
+    Eigen::VectorXd residual(static_cast<Eigen::Index>(dofs.n_free()));
+    // R = F_ext - F_int on the free dofs, relative to the external load or, when the reaction
+    // is larger (a prescribed motion and no load: the footing, the cavity), to the reaction
+    const auto relative_residual = [&]() {
+      const std::vector<Vec2>& f_int = op.internal_force();
+      double reaction = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        Vec2 r = external_force_[i] - f_int[i];
+        for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
+          const Vec2& d = dofs.direction[std::size_t(a)];
+          residual(a) = r.dot(d);
+          r -= residual(a) * d;
+        }
+        if (!held[i]) reaction += r.squaredNorm();
+      }
+      const double scale = std::max(external_norm, std::sqrt(reaction));
+      const double norm = residual.norm();
+      return scale > 0.0 ? norm / scale : norm;
+    };
+    attempt.residuals.clear();
+    attempt.converged = false;
+    if (!op.evaluate(u)) {
+      attempt.why = "the stress update gave a non-finite stress";
+      return attempt;
+    }
+    double relative = relative_residual();
+    double correction = std::numeric_limits<double>::infinity();
+    for (int iteration = 0;; ++iteration) {
+      attempt.residuals.push_back(relative);
+      if (!std::isfinite(relative)) {
+        attempt.why = "non-finite residual";
+        return attempt;
+      }
+      if (relative <= o.tolerance ||
+          (correction <= o.displacement_tolerance && relative <= 100.0 * o.tolerance)) {
+        attempt.converged = true;
+        break;
+      }
+      if (iteration >= o.max_iterations) {
+        attempt.why = "no convergence in " + std::to_string(o.max_iterations) + " iterations";
+        return attempt;
+      }
+      op.assemble_tangent(dofs);
+      Eigen::VectorXd du;
+      {
+        ScopedTimer t(timers_, Phase::solve);
+        if (iteration == 0) lu.analyzePattern(op.tangent());
+        lu.factorize(op.tangent());
+        ++counters_.factorisations;
+        if (lu.info() != Eigen::Success) {
+          attempt.why = "singular tangent (UMFPACK could not factorise it)";
+          return attempt;
+        }
+        du = lu.solve(residual);
+        ++counters_.iterations;
+      }
+      // Backtracking line search on the residual norm: the full step unless it raises the
+      // residual (Tresca's corners make a full Newton step cycle at full plastic flow)
+      const std::vector<Vec2> u_start = u;
+      double step = 1.0;
+      for (int search = 0;; ++search) {
+        for (std::size_t i = 0; i < n; ++i) {
+          u[i] = u_start[i];
+          for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
+            u[i] += step * du(a) * dofs.direction[std::size_t(a)];
+          }
+        }
+        const bool finite = op.evaluate(u);
+        const double trial = finite ? relative_residual() : std::numeric_limits<double>::infinity();
+        if ((trial < relative || search >= kLineSearchHalvings) && (finite || search > 0)) {
+          if (!finite) {
+            attempt.why = "the stress update gave a non-finite stress";
+            return attempt;
+          }
+          relative = trial;
+          break;
+        }
+        step *= 0.5;
+        ++counters_.line_search_halvings;
+      }
+      double u_norm = 0.0;
+      for (const Vec2& x : u) u_norm += x.squaredNorm();
+      correction = step * du.norm() / std::max(std::sqrt(u_norm), 1e-300);
+    }
+    attempt.displacement = u;
+
+    // Active set: release tensile contacts, attach nodes that crossed a boundary.
+    bool changed = false;
+    const std::vector<Vec2>& f_int = op.internal_force();
+    std::vector<NodeConstraint> kept;
+    for (const NodeConstraint& c : constraints) {
+      const NodeBoundary& b = discretisation_.boundaries()[std::size_t(c.boundary)];
+      const auto i = std::size_t(c.node);
+      // R_i: force of the soil on the boundary; tensile when it pulls the boundary towards the
+      // soil (along the normal into the soil)
+      const Vec2 r = external_force_[i] - f_int[i];
+      const double pull = r.dot(c.normal);
+      const double size = std::max(1e-9 * std::sqrt(std::max(0.0, r.squaredNorm())), 1e-12);
+      if (b.condition != NodeCondition::bonded && pull > size && !settling_) {
+        if (released_[i] == 0) ++counters_.releases;
+        released_[i] = 1;
+        changed = true;
+      }
+    }
+    for (const NodeConstraint& c : constraints) {
+      if (released_[std::size_t(c.node)] == 0 ||
+          discretisation_.boundaries()[std::size_t(c.boundary)].condition ==
+              NodeCondition::bonded) {
+        kept.push_back(c);
+      }
+    }
+    {
+      std::vector<Vec2> x_end(n);
+      for (std::size_t i = 0; i < n; ++i) x_end[i] = particles.position[i] + u[i];
+      discretisation_.place_boundaries(t1, settling_);
+      std::vector<std::uint8_t> constrained(n, 0);
+      for (const NodeConstraint& c : kept) constrained[std::size_t(c.node)] = 1;
+      for (const NodeConstraint& c : find_constraints(x_end, t0, t1, true)) {
+        if (constrained[std::size_t(c.node)] || held[std::size_t(c.node)]) continue;
+        kept.push_back(c);
+        ++counters_.attachments;
+        changed = true;
+      }
+      discretisation_.place_boundaries(t0, settling_);
+    }
+    if (!changed) break;
+    if (pass + 1 == o.active_set_passes) break;  // keep the last solution
+    ++counters_.active_set_passes;
+    constraints = std::move(kept);
+  }
+
+  // Commit: the converged state of the increment
+  const double dt = t1 - t0;
+  const std::vector<Vec2>& u = attempt.displacement;
+  std::fill(boundary_force_.begin(), boundary_force_.end(), Vec2::Zero());
+  {
+    // Reactions: the residual at the constrained parts, to the boundary that holds each node
+    const std::vector<Vec2>& f_int = op.internal_force();
+    std::vector<std::int32_t> owner(n, -1);
+    for (const NodeConstraint& c : constraints) {
+      const auto i = std::size_t(c.node);
+      if (owner[i] < 0 || c.kind == ConstraintKind::fixed) owner[i] = c.boundary;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (owner[i] >= 0) boundary_force_[std::size_t(owner[i])] += external_force_[i] - f_int[i];
+    }
+    add_wall_strip_reactions(discretisation_.wall_strips(), discretisation_.cells(), op.stress(),
+                             boundary_force_);
+  }
+  const std::size_t width = particles.internal.width;
+  for (std::size_t i = 0; i < n; ++i) {
+    particles.position[i] += u[i];
+    particles.displacement[i] += u[i];
+    particles.velocity[i] = dt > 0.0 ? Vec2(u[i] / dt) : Vec2(Vec2::Zero());
+    particles.stress[i] = op.stress()[i];
+    std::copy(op.internal().begin() + std::ptrdiff_t(i * width),
+              op.internal().begin() + std::ptrdiff_t((i + 1) * width), particles.internal.of(i));
+    const Mat3& d = op.strain_increment()[i];
+    particles.strain[i] += d;
+    particles.volume[i] *= std::exp(d.trace());
+    particles.density[i] = particles.mass[i] / particles.volume[i];
+  }
+  previous_u_ = u;
+  previous_increment_ = dt;
+  return attempt;
+}
+
+double ImplicitSolver::step(Particles& particles, double time, double end_time) {
+  const duet::SpfemImplicitOptions& o = setup_.implicit;
+  const double nominal = o.increment > 0.0 ? o.increment : end_time / o.load_steps;
+  if (!(nominal > 0.0)) throw NumericalFailure("ispfem: no time left to step");
+  if (!(increment_ > 0.0)) increment_ = nominal;
+  const double left = end_time - time;
+  double dt = std::min(increment_, left);
+  if (left - dt < 1e-6 * nominal) dt = left;  // no sliver of an increment at the end
+  int cuts = 0;
+  std::vector<double> last;
+  while (true) {
+    const Attempt attempt = solve_increment(particles, time, time + dt);
+    if (attempt.converged) {
+      ++counters_.increments;
+      const int iterations = static_cast<int>(attempt.residuals.size()) - 1;
+      counters_.iterations_max = std::max(counters_.iterations_max, iterations);
+      counters_.residual_history.push_back(attempt.residuals);
+      counters_.increment_min =
+          counters_.increments == 1 ? dt : std::min(counters_.increment_min, dt);
+      counters_.increment_max = std::max(counters_.increment_max, dt);
+      increment_ = o.adaptive && iterations <= o.easy_iterations ? std::min(nominal, 1.5 * dt) : dt;
+      if (!o.adaptive) increment_ = nominal;
+      return dt;
+    }
+    // The floor: nominal / 2^max_step_cuts. Without it the halvings of successive increments
+    // compound (each grows back only after easy convergence) and a run can creep on with
+    // vanishing increments that converge trivially while its time stands still.
+    const double floor = nominal * std::ldexp(1.0, -o.max_step_cuts);
+    if (!o.adaptive || 0.5 * dt < floor * (1.0 - 1e-9)) {
+      std::ostringstream why;
+      why << "Newton did not converge at t = " << time << " s over the increment " << dt
+          << " s (increment " << counters_.increments + 1 << ", after " << cuts
+          << " cuts): " << attempt.why
+          << "; last relative residuals: " << format_residuals(attempt.residuals);
+      throw NumericalFailure(why.str());
+    }
+    ++cuts;
+    ++counters_.cuts;
+    dt *= 0.5;
+  }
+}
+
+void ImplicitSolver::settle(Particles& particles, int increments) {
+  settling_ = true;
+  const int n = std::max(increments, 1);
+  for (int k = 1; k <= n; ++k) {
+    gravity_factor_ = static_cast<double>(k) / n;
+    const double t0 = -1.0 + static_cast<double>(k - 1) / n;
+    const Attempt attempt = solve_increment(particles, t0, t0 + 1.0 / n);
+    if (!attempt.converged) {
+      settling_ = false;
+      throw NumericalFailure("ispfem gravity loading did not converge at gravity factor " +
+                             std::to_string(gravity_factor_) + ": " + attempt.why);
+    }
+    counters_.residual_history.push_back(attempt.residuals);
+  }
+  gravity_factor_ = 1.0;
+  settling_ = false;
+  particles.start_from_rest();
+  previous_u_.assign(particles.size(), Vec2::Zero());
+  previous_increment_ = 0.0;
+}
+
+Json ImplicitSolver::diagnostics() const {
+  const NewtonCounters& c = counters_;
+  const MeshCounters& m = discretisation_.counters();
+  Json newton = Json::object();
+  newton["increments"] = c.increments;
+  newton["cuts"] = c.cuts;
+  newton["iterations"] = c.iterations;
+  newton["iterations_max"] = static_cast<long>(c.iterations_max);
+  newton["iterations_per_increment"] =
+      c.increments > 0 ? static_cast<double>(c.iterations) / static_cast<double>(c.increments)
+                       : 0.0;
+  newton["factorisations"] = c.factorisations;
+  newton["line_search_halvings"] = c.line_search_halvings;
+  newton["increment_min"] = c.increment_min;
+  newton["increment_max"] = c.increment_max;
+  newton["active_set_passes"] = c.active_set_passes;
+  newton["releases"] = c.releases;
+  newton["attachments"] = c.attachments;
+  newton["constrained_nodes_max"] = c.constrained_nodes_max;
+  newton["tolerance"] = setup_.implicit.tolerance;
+  newton["displacement_tolerance"] = setup_.implicit.displacement_tolerance;
+  newton["residual_scale"] = "max(|F_ext|, |reaction|) over the increment's iterate";
+  Json history = Json::array();
+  for (const std::vector<double>& r : c.residual_history) history.push_back(Json::array(r));
+  newton["residual_history"] = history;
+  Json j = Json::object();
+  j["newton"] = newton;
+  j["remeshes"] = m.remeshes;
+  j["forced_remeshes"] = m.forced_remeshes;
+  j["remesh"] = to_string(setup_.options.remesh);
+  j["triangles"] = static_cast<long>(m.triangles);
+  j["surface_nodes"] = static_cast<long>(m.surface_nodes);
+  j["components"] = static_cast<long>(m.components);
+  j["isolated_nodes_max"] = static_cast<long>(m.isolated_nodes_max);
+  j["smallest_angle"] = m.smallest_angle;
+  j["wall_strip_edges"] = static_cast<long>(discretisation_.wall_strips().edges.size());
+  return j;
+}
+
+}  // namespace duet::spfem

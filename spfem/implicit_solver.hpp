@@ -1,0 +1,111 @@
+#pragma once
+// The implicit SPFEM (papers/004, "Implicit SPFEM" and "Numerical procedure of iSPFEM"; Zhang,
+// Yuan & Dai 2018, Int. J. Geomech. 18(4) 04018010): updated Lagrangian and quasi-static. Per
+// increment of the scene's time [t_n, t_n+1]: (re)mesh the nodes at their configuration x_n
+// (NodalDiscretisation, shared with the explicit solver), collect the walls and rigid bodies the
+// nodes touch as constraints (node_constraints.hpp: prescribed by the boundaries' motion over the
+// increment, eliminated from the unknowns), then Newton-Raphson on R(u) = F_ext(t_n+1) -
+// F_int(u) with the exact tangent of IncrementOperator, solved by UMFPACK (the tangent is not
+// symmetric). The stress is committed only when the increment converges. A contact whose
+// reaction turns tensile is released, a node that crosses a boundary is attached, and the
+// increment is solved again (the active set, a few passes). Newton failures halve the increment
+// (up to max_step_cuts in a row); then the run fails as data. This class knows nothing of the
+// scene file: spfem/method.cpp translates a Scene into an IspfemSetup.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/json.hpp"
+#include "common/particles.hpp"
+#include "common/scene.hpp"
+#include "common/tensor.hpp"
+#include "common/timers.hpp"
+#include "constitutive/model.hpp"
+#include "spfem/nodal_discretisation.hpp"
+#include "spfem/node_constraints.hpp"
+#include "spfem/node_contact.hpp"
+
+namespace duet::spfem {
+
+struct IspfemSetup {
+  duet::SpfemOptions options;           // [spfem]: the shared discretisation's options
+  duet::SpfemImplicitOptions implicit;  // [spfem.implicit]
+  double spacing = 0.0;                 // dp, m
+  Vec2 gravity = Vec2::Zero();          // m/s^2
+  std::vector<std::unique_ptr<constitutive::Model>> models;  // by material index
+  std::vector<NodeBoundary> boundaries;                      // walls, then rigid bodies
+};
+
+struct NewtonCounters {
+  long increments = 0;         // converged increments
+  long cuts = 0;               // increments halved after Newton failed
+  long iterations = 0;         // Newton iterations (linear solves), all attempts
+  int iterations_max = 0;      // most iterations of a converged increment
+  long active_set_passes = 0;  // increments solved again because the contacts changed
+  long releases = 0;           // contacts released (tensile reaction)
+  long attachments = 0;        // nodes attached after crossing a boundary
+  long factorisations = 0;
+  long line_search_halvings = 0;
+  double increment_min = 0.0;  // s
+  double increment_max = 0.0;  // s
+  long constrained_nodes_max = 0;
+  // The relative residual after each iteration, one list per converged increment.
+  std::vector<std::vector<double>> residual_history;
+};
+
+class ImplicitSolver {
+ public:
+  explicit ImplicitSolver(IspfemSetup setup);
+
+  /// Orients the boundaries and sizes the buffers. Particles must have position, mass, volume,
+  /// density, stress, material and internal variables set.
+  void initialise(Particles& particles);
+
+  /// External nodal forces at a time (N/m per node; scene loads), filled into the vector.
+  using LoadFunction = std::function<void(double time, std::vector<Vec2>& force)>;
+  void set_loads(LoadFunction loads) { loads_ = std::move(loads); }
+
+  /// One converged increment from `time`, no further than `end_time`; returns its size (s).
+  /// Throws NumericalFailure when Newton fails after max_step_cuts halvings.
+  double step(Particles& particles, double time, double end_time);
+
+  /// Gravity loading: gravity ramped up over `increments` increments with the walls held, then
+  /// displacements and strains zeroed.
+  void settle(Particles& particles, int increments);
+
+  const std::vector<Vec2>& boundary_forces() const { return boundary_force_; }
+  const std::vector<NodeBoundary>& boundaries() const { return discretisation_.boundaries(); }
+  const NodalDiscretisation& discretisation() const { return discretisation_; }
+  const Timers& timers() const { return timers_; }
+  const NewtonCounters& counters() const { return counters_; }
+  Json diagnostics() const;
+
+ private:
+  struct Attempt {
+    bool converged = false;
+    std::string why;                 // when not converged
+    std::vector<double> residuals;   // relative residual after each iteration
+    std::vector<Vec2> displacement;  // u over the increment
+  };
+  Attempt solve_increment(Particles& particles, double t0, double t1);
+  std::vector<NodeConstraint> find_constraints(const std::vector<Vec2>& x, double t0, double t1,
+                                               bool crossed_only) const;
+
+  IspfemSetup setup_;
+  NodalDiscretisation discretisation_;
+  LoadFunction loads_;
+  double gravity_factor_ = 1.0;  // < 1 while gravity is ramped up (settle)
+  bool settling_ = false;
+  std::vector<std::uint8_t> released_;  // per node: let go of a tensile contact, until it leaves
+  std::vector<Vec2> previous_u_;        // the last increment's displacement (predictor)
+  double previous_increment_ = 0.0;
+  double increment_ = 0.0;  // the current (adaptive) increment size
+  std::vector<Vec2> external_force_;
+  std::vector<Vec2> boundary_force_;
+  Timers timers_;
+  NewtonCounters counters_;
+};
+
+}  // namespace duet::spfem

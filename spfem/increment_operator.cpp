@@ -1,0 +1,281 @@
+#include "spfem/increment_operator.hpp"
+
+#include <omp.h>
+
+#include <cmath>
+#include <span>
+
+#include "constitutive/objective.hpp"
+
+namespace duet::spfem {
+
+namespace {
+
+constexpr std::size_t kParallelMin = 2048;  // as in explicit_solver.cpp
+
+// Voigt positions (xx, yy, zz, xy, yz, zx) of the in-plane components xx, yy, xy.
+constexpr int kPlane[3] = {0, 1, 3};
+
+/// D C^-1 dsigma: how the model's return maps a change of its trial stress, for a model that
+/// integrates from an elastic trial sigma + C d_eps (Drucker-Prager, Tresca, Mohr-Coulomb,
+/// elasticity); a model with a tangent bound (hypoplastic) integrates a rate, whose start-stress
+/// derivative is the identity to first order.
+Vec3 through_return(const Mat6& d, const constitutive::ElasticModuli& e, const Mat3& dsigma) {
+  if (e.tangent_bound > 0.0 || !(e.shear > 0.0) || !(e.bulk > 0.0)) {
+    return Vec3(dsigma(0, 0), dsigma(1, 1), dsigma(0, 1));
+  }
+  // elastic compliance: eps = dev(dsigma) / 2G + tr(dsigma) / 9K I, engineering shear
+  const double mean = dsigma.trace() / 3.0;
+  Vec6 strain;
+  for (int i = 0; i < 3; ++i) {
+    strain(i) = (dsigma(i, i) - mean) / (2.0 * e.shear) + mean / (3.0 * e.bulk);
+  }
+  strain(3) = dsigma(0, 1) / e.shear;
+  strain(4) = dsigma(1, 2) / e.shear;
+  strain(5) = dsigma(0, 2) / e.shear;
+  const Vec6 s = d * strain;
+  return Vec3(s(0), s(1), s(3));
+}
+
+/// B_L of one node (3 x 2): [b_x 0; 0 b_y; b_y b_x].
+Eigen::Matrix<double, 3, 2> strain_operator(const Vec2& b) {
+  Eigen::Matrix<double, 3, 2> m;
+  m << b.x(), 0.0, 0.0, b.y(), b.y(), b.x();
+  return m;
+}
+
+}  // namespace
+
+IncrementOperator::IncrementOperator(
+    NodalDiscretisation& discretisation,
+    const std::vector<std::unique_ptr<constitutive::Model>>& models, const Particles& start,
+    std::vector<Vec2> wall_increment, Timers* timers)
+    : discretisation_(discretisation),
+      models_(models),
+      start_(start),
+      start_cells_(discretisation.cells()),
+      start_strips_(discretisation.wall_strips().edges),
+      wall_increment_(std::move(wall_increment)),
+      timers_(timers) {
+  const std::size_t n = start.size();
+  stress_ = start.stress;
+  internal_ = start.internal.values;
+  strain_increment_.assign(n, Mat3::Zero());
+  material_tangent_.assign(n, Mat3::Zero());
+  spin_stress_.assign(n, Vec3::Zero());
+  internal_force_.assign(n, Vec2::Zero());
+}
+
+void IncrementOperator::update_stresses(const std::vector<Vec2>& u) {
+  const std::size_t n = start_.size();
+  const SmoothingCells& b0 = start_cells_;
+  const std::size_t width = start_.internal.width;
+  const bool walls = !b0.wall_offset.empty();
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::size_t k = 0; k < n; ++k) {
+    stress_[k] = start_.stress[k];
+    std::copy(start_.internal.of(k), start_.internal.of(k) + width, internal_.data() + k * width);
+    strain_increment_[k].setZero();
+    material_tangent_[k].setZero();
+    spin_stress_[k].setZero();
+    if (!(b0.area[k] > 0.0)) continue;
+    // G_k = sum_l u_l (x) b_kl(x_n) (+ the wall points' motion through the wall strips)
+    Mat2 g = Mat2::Zero();
+    for (std::int32_t e = b0.offset[k]; e < b0.offset[k + 1]; ++e) {
+      g.noalias() +=
+          u[std::size_t(b0.column[std::size_t(e)])] * b0.gradient[std::size_t(e)].transpose();
+    }
+    if (walls) {
+      for (std::int32_t e = b0.wall_offset[k]; e < b0.wall_offset[k + 1]; ++e) {
+        g.noalias() += wall_increment_[std::size_t(b0.wall_column[std::size_t(e)])] *
+                       b0.wall_gradient[std::size_t(e)].transpose();
+      }
+    }
+    Mat3 l = Mat3::Zero();
+    l.topLeftCorner<2, 2>() = g;
+    const Mat3 d_strain = sym(l);
+    const Mat3 d_spin = skew(l);
+    const auto m = std::size_t(start_.material[k]);
+    const constitutive::Model& model = *models_[m];
+    const std::span<double> internal(internal_.data() + k * width,
+                                     model.internal_variables().size());
+    // The objective update of every method (constitutive/objective.hpp): rotate, then integrate.
+    Mat3 rotated = start_.stress[k];
+    if (d_spin.squaredNorm() > 0.0) {
+      const Mat3 r = constitutive::rotation_increment(d_spin);
+      rotated = r * rotated * r.transpose();
+    }
+    const constitutive::ElasticModuli moduli = model.moduli(rotated, internal);
+    Mat3 s = rotated;
+    Mat6 d;
+    model.integrate_with_tangent(d_strain, s, internal, d);
+    model.correct(s, internal);
+    stress_[k] = s;
+    strain_increment_[k] = d_strain;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) material_tangent_[k](i, j) = d(kPlane[i], kPlane[j]);
+    }
+    // d(R sigma R^T)/dW_12 = (Omega sigma_r - sigma_r Omega) / (1 + W_12^2 / 4) for the
+    // Hughes-Winget (Cayley) rotation, Omega = [[0, 1], [-1, 0]]: in Voigt
+    // [2 s_xy, -2 s_xy, 0, s_yy - s_xx] (notes: sigma_bar), carried through the return.
+    const double w = d_spin(0, 1);
+    Mat3 dsigma = Mat3::Zero();
+    dsigma(0, 0) = 2.0 * rotated(0, 1);
+    dsigma(1, 1) = -2.0 * rotated(0, 1);
+    dsigma(0, 1) = dsigma(1, 0) = rotated(1, 1) - rotated(0, 0);
+    dsigma(0, 2) = dsigma(2, 0) = rotated(1, 2);
+    dsigma(1, 2) = dsigma(2, 1) = -rotated(0, 2);
+    spin_stress_[k] = through_return(d, moduli, dsigma) / (1.0 + 0.25 * w * w);
+  }
+}
+
+bool IncrementOperator::evaluate(const std::vector<Vec2>& u) {
+  const std::size_t n = start_.size();
+  position_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) position_[i] = start_.position[i] + u[i];
+  // The strips' wall points: on a no-slip wall they follow the wall; on a free-slip wall they
+  // move with their nodes.
+  WallStrips& strips = discretisation_.wall_strips();
+  for (std::size_t e = 0; e < strips.edges.size() && e < start_strips_.size(); ++e) {
+    WallEdge& edge = strips.edges[e];
+    const WallEdge& start = start_strips_[e];
+    if (edge.free_slip) {
+      edge.a_wall = start.a_wall + u[std::size_t(edge.a)];
+      edge.b_wall = start.b_wall + u[std::size_t(edge.b)];
+    } else {
+      edge.a_wall = start.a_wall + wall_increment_[2 * e];
+      edge.b_wall = start.b_wall + wall_increment_[2 * e + 1];
+    }
+  }
+  Timers scratch;
+  Timers& timers = timers_ != nullptr ? *timers_ : scratch;
+  {
+    ScopedTimer t(timers, Phase::mesh);
+    discretisation_.refill(position_);
+  }
+  {
+    ScopedTimer t(timers, Phase::constitutive);
+    update_stresses(u);
+  }
+  for (const Mat3& s : stress_) {
+    if (!s.allFinite()) return false;
+  }
+  ScopedTimer t(timers, Phase::assembly);
+  // papers/004 iSPFEM: F_int = sum_k B_L^(k)T sigma_k A^(k) on the current configuration
+  internal_forces(discretisation_.cells(), stress_, internal_force_);
+  return true;
+}
+
+void IncrementOperator::assemble_tangent(const DofMap& dofs) {
+  Timers scratch;
+  ScopedTimer timer(timers_ != nullptr ? *timers_ : scratch, Phase::assembly);
+  const std::size_t n = start_.size();
+  // The geometric part of rows with layer or wall-strip terms (their weights are not A_e / 3
+  // and depend on edge lengths and turns): by central differences of the row's own terms
+  row_derivative_.resize(n);
+  const double h = 1e-6 * discretisation_.spacing();
+  for (std::size_t k = 0; k < n; ++k) {
+    row_derivative_[k].clear();
+    if (start_cells_.area[k] > 0.0 && discretisation_.has_layer_terms(k)) {
+      discretisation_.row_derivative(position_, k, h, row_derivative_[k]);
+    }
+  }
+  const SmoothingCells& cells = discretisation_.cells();
+  const SmoothingCells& b0 = start_cells_;
+  const std::vector<Triangle>& triangles = discretisation_.mesh().triangles;
+  using Triplet = Eigen::Triplet<double, int>;
+  const int n_threads = n > kParallelMin ? omp_get_max_threads() : 1;
+  std::vector<std::vector<Triplet>> parts(static_cast<std::size_t>(n_threads));
+
+  // Adds the 2 x 2 block (l, m) of dF_l/du_m to the free dofs of l and m.
+  const auto scatter = [&](std::vector<Triplet>& out, std::int32_t l, std::int32_t m,
+                           const Mat2& block) {
+    for (std::int32_t a = dofs.first[std::size_t(l)]; a < dofs.first[std::size_t(l) + 1]; ++a) {
+      const Vec2 da = dofs.direction[std::size_t(a)];
+      const Vec2 row = block.transpose() * da;
+      for (std::int32_t b = dofs.first[std::size_t(m)]; b < dofs.first[std::size_t(m) + 1]; ++b) {
+        out.emplace_back(a, b, row.dot(dofs.direction[std::size_t(b)]));
+      }
+    }
+  };
+
+#pragma omp parallel num_threads(n_threads)
+  {
+    std::vector<Triplet>& out = parts[std::size_t(omp_get_thread_num())];
+    std::vector<Eigen::Matrix<double, 3, 2>> q;
+#pragma omp for schedule(static)
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!(b0.area[k] > 0.0)) continue;
+      const std::int32_t begin = cells.offset[k];
+      const std::int32_t end = cells.offset[k + 1];
+      // Material and spin: A_k B_L,l^T [D_k B_L,m^0 + sigma_bar_k B_S,m^0]
+      q.resize(std::size_t(end - begin));
+      for (std::int32_t e = begin; e < end; ++e) {
+        const Vec2& b = b0.gradient[std::size_t(e)];
+        Eigen::Matrix<double, 1, 2> spin;  // B_S = 1/2 [b_y, -b_x]
+        spin << 0.5 * b.y(), -0.5 * b.x();
+        q[std::size_t(e - begin)] =
+            material_tangent_[k] * strain_operator(b) + spin_stress_[k] * spin;
+      }
+      const double area = cells.area[k];
+      for (std::int32_t el = begin; el < end; ++el) {
+        const Eigen::Matrix<double, 2, 3> left =
+            area * strain_operator(cells.gradient[std::size_t(el)]).transpose();
+        const std::int32_t l = cells.column[std::size_t(el)];
+        if (dofs.first[std::size_t(l)] == dofs.first[std::size_t(l) + 1]) continue;
+        for (std::int32_t em = begin; em < end; ++em) {
+          scatter(out, l, cells.column[std::size_t(em)], left * q[std::size_t(em - begin)]);
+        }
+      }
+      // Geometric: sigma_k d(A_k b_kl)/du_m
+      const Mat2 sigma = stress_[k].topLeftCorner<2, 2>();
+      if (!row_derivative_.empty() && !row_derivative_[k].empty()) {
+        const std::vector<Vec2>& d = row_derivative_[k];
+        const std::int32_t length = end - begin;
+        for (std::int32_t jl = 0; jl < length; ++jl) {
+          for (std::int32_t jm = 0; jm < length; ++jm) {
+            Mat2 block;
+            block.col(0) = sigma * d[std::size_t((jl * length + jm) * 2)];
+            block.col(1) = sigma * d[std::size_t((jl * length + jm) * 2 + 1)];
+            scatter(out, cells.column[std::size_t(begin + jl)],
+                    cells.column[std::size_t(begin + jm)], block);
+          }
+        }
+        continue;
+      }
+      // the element gradients of the triangles that make up row k, weighted as there:
+      // d(w grad N_I) = w (tr G_e grad N_I - G_e^T grad N_I) for w = A_e / 3 (notes)
+      for (std::int32_t r = cells.node_triangles.offset[k]; r < cells.node_triangles.offset[k + 1];
+           ++r) {
+        const auto e = std::size_t(cells.node_triangles.triangle[std::size_t(r)]);
+        const TriangleTerms& terms = cells.triangle_terms[e];
+        if (terms.area == 0.0) continue;
+        const double w = cells.triangle_weight[std::size_t(r)];
+        std::array<Vec2, 3> grad;
+        std::array<Vec2, 3> sg;
+        for (int c = 0; c < 3; ++c) {
+          grad[std::size_t(c)] = terms.weighted_gradient[std::size_t(c)] * (3.0 / terms.area);
+          sg[std::size_t(c)] = sigma * grad[std::size_t(c)];
+        }
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) {
+            const Mat2 block = w * (sg[std::size_t(i)] * grad[std::size_t(j)].transpose() -
+                                    sg[std::size_t(j)] * grad[std::size_t(i)].transpose());
+            scatter(out, triangles[e][std::size_t(i)], triangles[e][std::size_t(j)], block);
+          }
+        }
+      }
+    }
+  }
+  std::size_t total = 0;
+  for (const auto& p : parts) total += p.size();
+  std::vector<Triplet> all;
+  all.reserve(total);
+  for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+  const auto n_free = static_cast<int>(dofs.n_free());
+  tangent_.resize(n_free, n_free);
+  tangent_.setFromTriplets(all.begin(), all.end());
+  tangent_.makeCompressed();
+}
+
+}  // namespace duet::spfem

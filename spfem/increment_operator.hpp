@@ -1,0 +1,84 @@
+#pragma once
+// The discrete operator of one implicit SPFEM increment (papers/004, "Implicit SPFEM": weak form,
+// K_ep + K_g, Newton-Raphson; Zhang, Yuan & Dai 2018): for the displacement u of the nodes over
+// the increment, the internal force F_int(u) = sum_k A_k(x) B_L,k(x)^T sigma_k(u) on the
+// configuration x = x_n + u (updated Lagrangian), with sigma_k(u) the shared objective stress
+// update (Hughes-Winget rotation, then the model) of the increment's gradient
+// G_k = sum_l u_l (x) b_kl(x_n) on the configuration at the increment's start, and its exact
+// tangent dF_int/du on the free dofs (../shared/notes/implicit-spfem.md):
+//   K = sum_k A_k B_L,k^T [D_k B_L,k^0 + sigma_bar_k B_S,k^0]                 material + spin
+//     + sum_k sum_{e at k} w_ke [(sigma_k grad N_I^e) (x) grad N_J^e
+//                                - (sigma_k grad N_J^e) (x) grad N_I^e]         geometric
+// with D_k the model's consistent tangent, sigma_bar_k the derivative of the rotated stress with
+// respect to the spin (through D_k C^-1 for a return mapping on the elastic trial), and the
+// geometric part from the ELEMENT gradients grad N^e of the triangles that make up row k (weights
+// w_ke = SmoothingCells::triangle_weight). Like MFEM's Operator (Mult / GetGradient) it knows
+// nothing of Newton; ImplicitSolver drives it.
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Sparse>
+
+#include "common/particles.hpp"
+#include "common/tensor.hpp"
+#include "common/timers.hpp"
+#include "constitutive/model.hpp"
+#include "spfem/nodal_discretisation.hpp"
+#include "spfem/node_constraints.hpp"
+
+namespace duet::spfem {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+class IncrementOperator {
+ public:
+  /// The increment starts from `start` (positions, stress, internal variables, material) on the
+  /// cells `discretisation` holds now (built at start.position); `wall_increment` is the
+  /// displacement of the wall strips' wall points over the increment (2 per strip edge: a', b').
+  /// `models` by material index. The discretisation is refilled at every evaluation.
+  IncrementOperator(NodalDiscretisation& discretisation,
+                    const std::vector<std::unique_ptr<constitutive::Model>>& models,
+                    const Particles& start, std::vector<Vec2> wall_increment,
+                    Timers* timers = nullptr);
+
+  /// Stress and internal force at the nodal displacement `u`. Returns false when the model
+  /// could not integrate (a non-finite stress).
+  bool evaluate(const std::vector<Vec2>& u);
+
+  /// The tangent dF_int/du on the free dofs of `dofs` at the state of the last evaluate().
+  void assemble_tangent(const DofMap& dofs);
+
+  const std::vector<Vec2>& internal_force() const { return internal_force_; }
+  const std::vector<Mat3>& stress() const { return stress_; }
+  const std::vector<double>& internal() const { return internal_; }  // start.internal layout
+  const std::vector<Mat3>& strain_increment() const { return strain_increment_; }
+  /// dF_int / du on the free dofs, from the last assemble_tangent().
+  const SparseMatrix& tangent() const { return tangent_; }
+  /// The positions of the last evaluation.
+  const std::vector<Vec2>& position() const { return position_; }
+  const SmoothingCells& start_cells() const { return start_cells_; }
+
+ private:
+  void update_stresses(const std::vector<Vec2>& u);
+
+  NodalDiscretisation& discretisation_;
+  const std::vector<std::unique_ptr<constitutive::Model>>& models_;
+  const Particles& start_;
+  SmoothingCells start_cells_;          // b_kl at x_n (the increment's strain operator)
+  std::vector<WallEdge> start_strips_;  // the strips' wall points at x_n
+  std::vector<Vec2> wall_increment_;
+  std::vector<Vec2> position_;
+  std::vector<Mat3> stress_;
+  std::vector<double> internal_;
+  std::vector<Mat3> strain_increment_;
+  std::vector<Mat3> material_tangent_;  // in-plane D_k (xx, yy, xy; engineering shear)
+  std::vector<Vec3> spin_stress_;       // d sigma_k (xx, yy, xy) / d W_12
+  std::vector<Vec2> internal_force_;
+  SparseMatrix tangent_;
+  // Rows with boundary-layer or wall-strip terms: d(A_k b_kl)/dx_m by central differences
+  std::vector<std::vector<Vec2>> row_derivative_;
+  Timers* timers_ = nullptr;  // mesh (refill), constitutive, assembly
+};
+
+}  // namespace duet::spfem

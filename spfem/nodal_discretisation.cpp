@@ -1,0 +1,90 @@
+#include "spfem/nodal_discretisation.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "common/input_error.hpp"
+
+namespace duet::spfem {
+
+NodalDiscretisation::NodalDiscretisation(const duet::SpfemOptions& options, double spacing,
+                                         std::vector<NodeBoundary> boundaries)
+    : options_(options), spacing_(spacing), boundaries_(std::move(boundaries)) {
+  if (!(spacing_ > 0.0)) throw InputError("spfem: particle spacing must be > 0 m");
+  if (!(options_.alpha_factor > 0.0)) throw InputError("spfem.alpha_factor must be > 0");
+}
+
+void NodalDiscretisation::initialise(const std::vector<Vec2>& positions) {
+  geometry_.clear();
+  for (const NodeBoundary& b : boundaries_) {
+    geometry_.push_back(orient_boundary(b, positions, 2.0 * spacing_));
+  }
+  have_mesh_ = false;
+  wall_strips_ = WallStrips{};
+  counters_ = MeshCounters{};
+}
+
+void NodalDiscretisation::place_boundaries(double t, bool held) {
+  for (std::size_t b = 0; b < boundaries_.size(); ++b) {
+    update_geometry(boundaries_[b], std::max(t, 0.0), geometry_[b]);
+    if (held) {
+      std::fill(geometry_[b].point_velocity.begin(), geometry_[b].point_velocity.end(),
+                Vec2::Zero());
+    }
+  }
+}
+
+bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
+  const duet::SpfemOptions& o = options_;
+  bool remesh = !have_mesh_ || o.remesh == Remesh::every_step;
+  double angle = 180.0;  // smallest angle of the kept mesh at x (when it was measured)
+  if (!remesh) {
+    // Remesh on angle (spfem/remesh_trigger.hpp): keep the connectivity while every triangle
+    // stays above its limit; an inverted triangle always forces a new mesh.
+    remesh = remesh_due(mesh_, x, remesh_trigger_, angle);
+    if (remesh && angle <= 0.0) ++counters_.forced_remeshes;
+  }
+  if (remesh) {
+    build_alpha_mesh(x, o.alpha_factor * spacing_, mesh_);
+    have_mesh_ = true;
+    ++counters_.remeshes;
+    counters_.triangles = mesh_.triangles.size();
+    counters_.components = mesh_.n_components;
+    counters_.surface_nodes = static_cast<std::size_t>(
+        std::count(mesh_.surface.begin(), mesh_.surface.end(), std::uint8_t{1}));
+    counters_.isolated_nodes_max = std::max(
+        counters_.isolated_nodes_max,
+        static_cast<std::size_t>(std::count(mesh_.component.begin(), mesh_.component.end(), -1)));
+  }
+  // papers/004 smoothing slides: A_k = sum_j A_e^j / 3, b_lh(x_k) = (1/A_k) sum_j A_e^j N_l,h^j
+  // / 3. The particles are cell-centred (the particle at (i + 1/2) dp carries dp^2), so the mesh
+  // through them lies dp/2 inside the material on every face: the boundary layer of depth dp/2
+  // gives the surface cells the skin the mesh misses, so stiffness and the nodes' (particle) mass
+  // agree.
+  const double layer = layer_depth();
+  // No-slip walls as wall strips (with the layer): the edges at a wall own the strip to it.
+  const WallStrips* strips = nullptr;
+  if (layer > 0.0) {
+    find_wall_strips(mesh_, x, boundaries_, geometry_, spacing_, layer, wall_strips_);
+    strips = &wall_strips_;
+  }
+  if (remesh) {
+    build_smoothing_cells(mesh_, x, cells_, layer, strips);
+  } else {
+    refill_smoothing_cells(mesh_, x, cells_, layer, strips);  // same triangles: same rows
+  }
+  if (remesh && o.remesh == Remesh::angle) {
+    angle = arm_remesh_trigger(mesh_, x, o.remesh_angle, o.remesh_angle_fraction, remesh_trigger_);
+  } else if (remesh && !mesh_.triangles.empty()) {
+    angle = smallest_angle(mesh_, x);
+  }
+  counters_.smallest_angle = std::min(counters_.smallest_angle, angle);
+  return remesh;
+}
+
+void NodalDiscretisation::refill(const std::vector<Vec2>& x) {
+  const double layer = layer_depth();
+  refill_smoothing_cells(mesh_, x, cells_, layer, layer > 0.0 ? &wall_strips_ : nullptr);
+}
+
+}  // namespace duet::spfem

@@ -1,0 +1,91 @@
+#pragma once
+// The nodal discretisation both SPFEM solvers compose (papers/004, "PFEM steps" and "Strain
+// smoothing technique"): the walls and rigid bodies at time t, the alpha mesh of the nodes (with
+// the remesh trigger), the wall strips and the node-based smoothing cells with their boundary
+// layer, and the mesh counters. The explicit solver (explicit_solver.hpp) updates it once per
+// step; the implicit solver (implicit_solver.hpp) once per increment on the configuration at its
+// start, then refills the same cells at each Newton iterate. Nothing here knows of stresses,
+// masses or time integration.
+
+#include <cstddef>
+#include <vector>
+
+#include "common/scene.hpp"
+#include "common/tensor.hpp"
+#include "spfem/alpha_mesh.hpp"
+#include "spfem/node_contact.hpp"
+#include "spfem/remesh_trigger.hpp"
+#include "spfem/smoothing.hpp"
+#include "spfem/wall_strip.hpp"
+
+namespace duet::spfem {
+
+struct MeshCounters {
+  long remeshes = 0;
+  long forced_remeshes = 0;  // angle trigger found an inverted triangle
+  std::size_t triangles = 0;
+  std::size_t surface_nodes = 0;
+  int components = 0;
+  std::size_t isolated_nodes_max = 0;
+  double smallest_angle = 180.0;  // deg, smallest seen on a mesh in use
+};
+
+class NodalDiscretisation {
+ public:
+  /// `options`: the scene's [spfem] (alpha_factor, remesh, remesh_angle(_fraction),
+  /// boundary_layer); `spacing` dp (m); walls then rigid bodies.
+  NodalDiscretisation(const duet::SpfemOptions& options, double spacing,
+                      std::vector<NodeBoundary> boundaries);
+
+  /// Orients the boundaries on the initial node positions; forgets any mesh and attachment.
+  void initialise(const std::vector<Vec2>& positions);
+
+  /// The boundaries' points, normals and velocities at time t (t < 0: as at 0); `held` zeroes
+  /// their velocities (gravity loading holds the walls still).
+  void place_boundaries(double t, bool held);
+
+  /// Mesh at `x` (a new Delaunay / alpha mesh when due: every call, or on the angle trigger), the
+  /// wall strips of the boundaries as last placed, and the smoothing cells. Returns true when it
+  /// remeshed.
+  bool update(const std::vector<Vec2>& x);
+
+  /// Recomputes the cells on the kept mesh and wall strips at new positions `x` (same rows).
+  void refill(const std::vector<Vec2>& x);
+
+  /// True when row k carries boundary-layer or wall-strip terms (a surface node, layer on).
+  bool has_layer_terms(std::size_t k) const {
+    return layer_depth() > 0.0 && (mesh_.surface.size() != cells_.area.size() || mesh_.surface[k]);
+  }
+
+  /// d(A_k b_kl)/dx_m over row k at `x` (the positions of the last refill), by central
+  /// differences of step h (smoothing.hpp row_position_derivative).
+  void row_derivative(std::vector<Vec2>& x, std::size_t k, double h, std::vector<Vec2>& out) {
+    row_position_derivative(mesh_, x, k, layer_depth(), &wall_strips_, h, cells_, out);
+  }
+
+  const duet::SpfemOptions& options() const { return options_; }
+  double spacing() const { return spacing_; }
+  /// Depth of the boundary layer (dp / 2 with spfem.boundary_layer, else 0), m.
+  double layer_depth() const { return options_.boundary_layer ? 0.5 * spacing_ : 0.0; }
+  const std::vector<NodeBoundary>& boundaries() const { return boundaries_; }
+  const std::vector<BoundaryGeometry>& geometry() const { return geometry_; }
+  const AlphaMesh& mesh() const { return mesh_; }
+  const SmoothingCells& cells() const { return cells_; }
+  const WallStrips& wall_strips() const { return wall_strips_; }
+  WallStrips& wall_strips() { return wall_strips_; }
+  const MeshCounters& counters() const { return counters_; }
+
+ private:
+  duet::SpfemOptions options_;
+  double spacing_ = 0.0;
+  std::vector<NodeBoundary> boundaries_;
+  std::vector<BoundaryGeometry> geometry_;
+  AlphaMesh mesh_;
+  SmoothingCells cells_;
+  RemeshTrigger remesh_trigger_;  // remesh = angle: the limits of the kept triangles
+  WallStrips wall_strips_;        // no-slip (and free-slip) walls as strips of the smoothing
+  bool have_mesh_ = false;
+  MeshCounters counters_;
+};
+
+}  // namespace duet::spfem
