@@ -57,6 +57,8 @@ IncrementOperator::IncrementOperator(
       start_strips_(discretisation.wall_strips().edges),
       wall_increment_(std::move(wall_increment)),
       timers_(timers) {
+  // The layer's shape tests and wedge branches as at the increment's start (smoothing.hpp)
+  discretisation_.freeze_layer_branches(true);
   const std::size_t n = start.size();
   stress_ = start.stress;
   internal_ = start.internal.values;
@@ -64,6 +66,21 @@ IncrementOperator::IncrementOperator(
   material_tangent_.assign(n, Mat3::Zero());
   spin_stress_.assign(n, Vec3::Zero());
   internal_force_.assign(n, Vec2::Zero());
+  if (discretisation_.options().stiffness_stabilisation > 0.0) {
+    reference_position_.resize(n);
+    block_modulus_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      reference_position_[i] = start.position[i] - start.displacement[i];
+      const auto m = std::size_t(start.material[i]);
+      const constitutive::ElasticModuli e = models_[m]->moduli(
+          start.stress[i],
+          std::span<const double>(start.internal.of(i), models_[m]->internal_variables().size()));
+      // the explicit solver's time-step modulus: the tangent bound, else |lambda| + 2 G
+      block_modulus_[i] = e.tangent_bound > 0.0
+                              ? e.tangent_bound
+                              : std::abs(e.bulk - 2.0 * e.shear / 3.0) + 2.0 * std::abs(e.shear);
+    }
+  }
 }
 
 void IncrementOperator::update_stresses(const std::vector<Vec2>& u) {
@@ -163,6 +180,15 @@ bool IncrementOperator::evaluate(const std::vector<Vec2>& u) {
   ScopedTimer t(timers, Phase::assembly);
   // papers/004 iSPFEM: F_int = sum_k B_L^(k)T sigma_k A^(k) on the current configuration
   internal_forces(discretisation_.cells(), stress_, internal_force_);
+  const double s = discretisation_.options().stiffness_stabilisation;
+  if (s > 0.0 && !discretisation_.mesh().triangles.empty()) {
+    // spfem/stiffness_stabilisation.hpp: the force -dW/dx resists like an internal force
+    stiffness_stabilisation_forces(discretisation_.mesh().triangles,
+                                   discretisation_.cells().node_triangles, reference_position_,
+                                   position_, block_modulus_, s, stabilisation_scratch_,
+                                   stabilisation_force_);
+    for (std::size_t i = 0; i < n; ++i) internal_force_[i] -= stabilisation_force_[i];
+  }
   return true;
 }
 
@@ -203,6 +229,9 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs) {
   {
     std::vector<Triplet>& out = parts[std::size_t(omp_get_thread_num())];
     std::vector<Eigen::Matrix<double, 3, 2>> q;
+    std::vector<double> hessian;
+    const bool stabilised = discretisation_.options().stiffness_stabilisation > 0.0 &&
+                            !discretisation_.mesh().triangles.empty();
 #pragma omp for schedule(static)
     for (std::size_t k = 0; k < n; ++k) {
       if (!(b0.area[k] > 0.0)) continue;
@@ -225,6 +254,21 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs) {
         if (dofs.first[std::size_t(l)] == dofs.first[std::size_t(l) + 1]) continue;
         for (std::int32_t em = begin; em < end; ++em) {
           scatter(out, l, cells.column[std::size_t(em)], left * q[std::size_t(em - begin)]);
+        }
+      }
+      if (stabilised) {
+        // d^2 W / dx^2 of node k's stabilisation terms (exact: W is quadratic in x)
+        stiffness_stabilisation_hessian(triangles, cells.node_triangles, stabilisation_scratch_, k,
+                                        &cells.column[std::size_t(begin)], end - begin, hessian);
+        const std::int32_t length = end - begin;
+        for (std::int32_t i = 0; i < length; ++i) {
+          for (std::int32_t j = 0; j < length; ++j) {
+            const double v = hessian[std::size_t(i * length + j)];
+            if (v != 0.0) {
+              scatter(out, cells.column[std::size_t(begin + i)],
+                      cells.column[std::size_t(begin + j)], v * Mat2::Identity());
+            }
+          }
         }
       }
       // Geometric: sigma_k d(A_k b_kl)/du_m

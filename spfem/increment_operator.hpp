@@ -26,6 +26,7 @@
 #include "constitutive/model.hpp"
 #include "spfem/nodal_discretisation.hpp"
 #include "spfem/node_constraints.hpp"
+#include "spfem/stiffness_stabilisation.hpp"
 
 namespace duet::spfem {
 
@@ -79,6 +80,12 @@ class IncrementOperator {
   // Rows with boundary-layer or wall-strip terms: d(A_k b_kl)/dx_m by central differences
   std::vector<std::vector<Vec2>> row_derivative_;
   Timers* timers_ = nullptr;  // mesh (refill), constitutive, assembly
+  // Stiffness stabilisation (spfem.stiffness_stabilisation > 0): W on the nodes' initial
+  // positions, M_e from the moduli at the increment's start, its force added to F_int
+  std::vector<Vec2> reference_position_;
+  std::vector<double> block_modulus_;
+  std::vector<Vec2> stabilisation_force_;
+  StiffnessStabilisationScratch stabilisation_scratch_;
 };
 
 }  // namespace duet::spfem

@@ -61,6 +61,7 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
   // through them lies dp/2 inside the material on every face: the boundary layer of depth dp/2
   // gives the surface cells the skin the mesh misses, so stiffness and the nodes' (particle) mass
   // agree.
+  cells_.frozen_branches = false;
   const double layer = layer_depth();
   // No-slip walls as wall strips (with the layer): the edges at a wall own the strip to it.
   const WallStrips* strips = nullptr;

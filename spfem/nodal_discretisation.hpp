@@ -52,6 +52,10 @@ class NodalDiscretisation {
   /// Recomputes the cells on the kept mesh and wall strips at new positions `x` (same rows).
   void refill(const std::vector<Vec2>& x);
 
+  /// Keeps the boundary layer's discrete choices of the last update in later refills (true)
+  /// or lets every fill choose again (false, the default; update() always chooses again).
+  void freeze_layer_branches(bool frozen) { cells_.frozen_branches = frozen; }
+
   /// True when row k carries boundary-layer or wall-strip terms (a surface node, layer on).
   bool has_layer_terms(std::size_t k) const {
     return layer_depth() > 0.0 && (mesh_.surface.size() != cells_.area.size() || mesh_.surface[k]);

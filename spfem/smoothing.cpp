@@ -132,8 +132,15 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
     // Weight of grad N^e in this row: A_e / 3, plus the strips of e's surface edges at k
     // (weighted_gradient holds (A_e / 3) grad N^e, so the strips enter as a factor on it).
     double factor = 1.0;
-    const bool well_shaped =
+    bool well_shaped =
         depth > 0.0 && on_surface && 2.0 * terms.area >= depth * longest_edge(t, points);
+    // Frozen branches (the implicit solver, within an increment): the shape test as at the
+    // increment's start, so that F_int stays smooth in the nodes' positions
+    if (cells.frozen_branches) {
+      well_shaped = cells.well_shaped[i] != 0;
+    } else {
+      cells.well_shaped[i] = well_shaped ? 1 : 0;
+    }
     if (well_shaped) well_area += terms.area / 3.0;
     if (depth > 0.0 && on_surface) {
       const int at = t[0] == Index(k) ? 0 : (t[1] == Index(k) ? 1 : 2);
@@ -170,8 +177,20 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
     // A strip along an edge shorter than the depth makes the turn between the edges arbitrary
     // (two surface nodes nearly together): the wedge is held within depth x the shorter edge.
     const double shorter = std::min(incoming.norm(), outgoing.norm());
-    const double wedge =
-        depth * std::min(depth, shorter) * std::clamp(std::tan(0.5 * turn), -1.0, 1.0);
+    const double slope = std::tan(0.5 * turn);
+    // Branches: bit 0, the wedge held within depth x the shorter edge; bits 1-2, |tan| capped
+    // at 1 from above (2) or below (4). Frozen: as at the increment's start.
+    std::uint8_t branch = 0;
+    if (cells.frozen_branches) {
+      branch = cells.wedge_branch[k];
+    } else {
+      branch =
+          std::uint8_t((shorter < depth ? 1 : 0) | (slope > 1.0 ? 2 : 0) | (slope < -1.0 ? 4 : 0));
+      cells.wedge_branch[k] = branch;
+    }
+    const double reach = (branch & 1) != 0 ? shorter : depth;
+    const double capped = (branch & 2) != 0 ? 1.0 : ((branch & 4) != 0 ? -1.0 : slope);
+    const double wedge = depth * reach * capped;
     if (n_walled > 0) {
       wall_wedge = wedge;  // the corner against the wall: the wall strip's gradient
     } else {
@@ -183,9 +202,8 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
     // spread x the gradient smoothed over the well-shaped triangles:
     // sum_e (spread / well_area) (A_e / 3) grad N^e
     for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
-      const Triangle& t = triangles[cells.node_triangles.triangle[i]];
       const TriangleTerms& terms = cells.triangle_terms[cells.node_triangles.triangle[i]];
-      if (2.0 * terms.area >= depth * longest_edge(t, points)) {
+      if (cells.well_shaped[i] != 0) {  // the first pass's test (or the frozen one)
         add_terms(terms, spread / well_area, cells.corner_entry[i], cells);
         cells.triangle_weight[i] += spread / well_area * terms.area / 3.0;
       }
@@ -377,6 +395,8 @@ void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& poin
   const std::ptrdiff_t n_triangles = std::ptrdiff_t(triangles.size());
   cells.triangle_terms.resize(triangles.size());
   cells.triangle_weight.resize(cells.node_triangles.triangle.size());
+  cells.well_shaped.resize(cells.node_triangles.triangle.size());
+  cells.wedge_branch.resize(n_nodes);
 #pragma omp parallel for schedule(static) if (n_triangles > kParallelMin)
   for (std::ptrdiff_t e = 0; e < n_triangles; ++e) {
     cells.triangle_terms[std::size_t(e)] = triangle_terms(triangles[std::size_t(e)], points);

@@ -49,6 +49,13 @@ struct SmoothingCells {
   // plus the boundary-layer strips and wedge e carries at k. The implicit solver's geometric
   // stiffness reads it.
   std::vector<double> triangle_weight;
+  // The boundary layer's discrete choices at the last fill that was not frozen: per entry r of
+  // node_triangles, whether e counts as well shaped at k; per node, the wedge's branches.
+  // frozen_branches = true makes a refill keep them (the implicit solver within an increment,
+  // where a switch would make F_int jump between Newton iterates).
+  std::vector<std::uint8_t> well_shaped;
+  std::vector<std::uint8_t> wedge_branch;
+  bool frozen_branches = false;
   std::vector<std::int32_t> row_scratch;  // the build's rows before packing
 };
 

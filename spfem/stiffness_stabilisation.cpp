@@ -146,4 +146,45 @@ double stiffness_stabilisation_forces(const std::vector<Triangle>& triangles,
   return energy;
 }
 
+void stiffness_stabilisation_hessian(const std::vector<Triangle>& triangles,
+                                     const NodeTriangles& rows,
+                                     const StiffnessStabilisationScratch& scratch, std::size_t k,
+                                     const std::int32_t* row, std::int32_t length,
+                                     std::vector<double>& out) {
+  out.assign(std::size_t(length * length), 0.0);
+  const double area = scratch.node_area[k];
+  if (!(area > 0.0)) return;
+  const auto local = [&](std::int32_t node) {
+    std::int32_t found = length;
+    for (std::int32_t j = 0; j < length; ++j) found = row[j] == node ? j : found;
+    return found;
+  };
+  // The mean part: sum_{e' at k} (A0_e' / Abar_k) G_a^e' per row node
+  std::vector<Vec2> mean(static_cast<std::size_t>(length), Vec2::Zero());
+  for (std::int32_t r = rows.offset[k]; r < rows.offset[k + 1]; ++r) {
+    const auto e = std::size_t(rows.triangle[std::size_t(r)]);
+    const double weight = scratch.reference_area[e] / area;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::int32_t j = local(triangles[e][c]);
+      if (j < length) mean[std::size_t(j)] += weight * scratch.reference_gradient[e][c];
+    }
+  }
+  std::vector<Vec2> h(static_cast<std::size_t>(length));
+  for (std::int32_t r = rows.offset[k]; r < rows.offset[k + 1]; ++r) {
+    const auto e = std::size_t(rows.triangle[std::size_t(r)]);
+    const double c_e = scratch.stiffness[e];
+    if (c_e == 0.0) continue;
+    for (std::int32_t j = 0; j < length; ++j) h[std::size_t(j)] = -mean[std::size_t(j)];
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::int32_t j = local(triangles[e][c]);
+      if (j < length) h[std::size_t(j)] += scratch.reference_gradient[e][c];
+    }
+    for (std::int32_t i = 0; i < length; ++i) {
+      for (std::int32_t j = 0; j < length; ++j) {
+        out[std::size_t(i * length + j)] += c_e * h[std::size_t(i)].dot(h[std::size_t(j)]);
+      }
+    }
+  }
+}
+
 }  // namespace duet::spfem

@@ -66,4 +66,16 @@ double stiffness_stabilisation_forces(const std::vector<Triangle>& triangles,
                                       StiffnessStabilisationScratch& scratch,
                                       std::vector<Vec2>& force);
 
+/// The Hessian of W for node k's terms: W is quadratic in the positions with M_e held fixed, so
+///   d^2 W_k / dx_a dx_b = sum_{e at k} (s A0_e M_e / 3) (h_a . h_b) I_2,
+///   h_a = G_a^e [a in e] - sum_{e' at k} (A0_e' / Abar_k) G_a^e' [a in e'],
+/// exact (the implicit solver's tangent). `row` lists the `length` nodes of the triangles around
+/// k (k's smoothing row); out[i * length + j] is the factor of I_2 for (row[i], row[j]). Reads
+/// the scratch of the last energy or forces call on the same mesh.
+void stiffness_stabilisation_hessian(const std::vector<Triangle>& triangles,
+                                     const NodeTriangles& rows,
+                                     const StiffnessStabilisationScratch& scratch, std::size_t k,
+                                     const std::int32_t* row, std::int32_t length,
+                                     std::vector<double>& out);
+
 }  // namespace duet::spfem

@@ -64,11 +64,12 @@ std::vector<Vec2> displacement(const Particles& p, const Mat2& g, double noise, 
 
 /// Relative Frobenius distance between the assembled tangent and the central-difference Jacobian
 /// of F_int, every dof free.
-double tangent_error(Case& c, bool boundary_layer) {
+double tangent_error(Case& c, bool boundary_layer, double stiffness_stabilisation = 0.0) {
   std::vector<std::unique_ptr<constitutive::Model>> models;
   models.push_back(std::move(c.model));
   duet::SpfemOptions options;
   options.boundary_layer = boundary_layer;
+  options.stiffness_stabilisation = stiffness_stabilisation;
   NodalDiscretisation discretisation(options, kSpacing, {});
   discretisation.initialise(c.start.position);
   discretisation.place_boundaries(0.0, false);
@@ -129,6 +130,14 @@ TEST(IncrementOperator, ElasticTangentMatchesFiniteDifferenceJacobianWithBoundar
   Case c = elastic_case();
   const double error = tangent_error(c, true);
   std::printf("elastic, boundary layer: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, StiffnessStabilisationHessianMatchesFiniteDifferenceJacobian) {
+  // The stabilisation's energy W is quadratic in the positions: its Hessian is exact
+  Case c = elastic_case();
+  const double error = tangent_error(c, true, 0.5);
+  std::printf("elastic, layer, stiffness stabilisation 0.5: %.2e\n", error);
   EXPECT_LT(error, 1e-6);
 }
 
