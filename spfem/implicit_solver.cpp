@@ -267,7 +267,9 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
       const Vec2 r = external_force_[i] - f_int[i];
       const double pull = r.dot(c.normal);
       const double size = std::max(1e-9 * std::sqrt(std::max(0.0, r.squaredNorm())), 1e-12);
-      if (b.condition != NodeCondition::bonded && pull > size && !settling_) {
+      // Walls hold the nodes they touch both ways (a free-slip wall is mostly a symmetry plane,
+      // which carries the cavity's tensile hoop stress); a rigid body lets go of a tensile node.
+      if (b.rigid_body && b.condition != NodeCondition::bonded && pull > size && !settling_) {
         if (released_[i] == 0) ++counters_.releases;
         released_[i] = 1;
         changed = true;

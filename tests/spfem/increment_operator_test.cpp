@@ -64,19 +64,21 @@ std::vector<Vec2> displacement(const Particles& p, const Mat2& g, double noise, 
 
 /// Relative Frobenius distance between the assembled tangent and the central-difference Jacobian
 /// of F_int, every dof free.
-double tangent_error(Case& c, bool boundary_layer, double stiffness_stabilisation = 0.0) {
+double tangent_error(Case& c, bool boundary_layer, double stiffness_stabilisation = 0.0,
+                     std::vector<NodeBoundary> walls = {}) {
   std::vector<std::unique_ptr<constitutive::Model>> models;
   models.push_back(std::move(c.model));
   duet::SpfemOptions options;
   options.boundary_layer = boundary_layer;
   options.stiffness_stabilisation = stiffness_stabilisation;
-  NodalDiscretisation discretisation(options, kSpacing, {});
+  NodalDiscretisation discretisation(options, kSpacing, std::move(walls));
   discretisation.initialise(c.start.position);
   discretisation.place_boundaries(0.0, false);
   discretisation.update(c.start.position);
   const std::size_t n = c.start.size();
   const DofMap dofs = eliminate(n, {}, std::vector<std::uint8_t>(n, 0));
-  IncrementOperator op(discretisation, models, c.start, {});
+  IncrementOperator op(discretisation, models, c.start,
+                       std::vector<Vec2>(2 * discretisation.wall_strips().edges.size()));
   EXPECT_TRUE(op.evaluate(c.u));
   op.assemble_tangent(dofs);
   const Eigen::MatrixXd k = Eigen::MatrixXd(op.tangent());
@@ -138,6 +140,28 @@ TEST(IncrementOperator, StiffnessStabilisationHessianMatchesFiniteDifferenceJaco
   Case c = elastic_case();
   const double error = tangent_error(c, true, 0.5);
   std::printf("elastic, layer, stiffness stabilisation 0.5: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, TangentWithWallStripsMatchesFiniteDifferenceJacobian) {
+  // A no-slip wall along x = 0 and a free-slip one along y = 0 (the cloud's first column and
+  // row lie within reach of them): their wall strips enter the rows of the nodes at the walls
+  Case c = elastic_case();
+  NodeBoundary clamp;
+  clamp.name = "clamp";
+  clamp.polyline = {Vec2(0.0, -1.0), Vec2(0.0, 6.0)};
+  clamp.condition = NodeCondition::bonded;
+  NodeBoundary floor;
+  floor.name = "floor";
+  floor.polyline = {Vec2(-1.0, 0.0), Vec2(7.0, 0.0)};
+  floor.condition = NodeCondition::smooth;
+  for (std::size_t i = 0; i < c.start.size(); ++i) {
+    // the first column and row onto the lattice, at dp / 2 from the walls
+    if (i % kNx == 0) c.start.position[i].x() = 0.5 * kSpacing;
+    if (i < std::size_t(kNx)) c.start.position[i].y() = 0.5 * kSpacing;
+  }
+  const double error = tangent_error(c, true, 0.0, {clamp, floor});
+  std::printf("elastic, layer, wall strips: %.2e\n", error);
   EXPECT_LT(error, 1e-6);
 }
 
