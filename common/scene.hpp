@@ -234,12 +234,12 @@ struct SpfemOptions {
 struct SpfemImplicitOptions {
   double tolerance = 1e-8;
   double displacement_tolerance = 1e-10;
-  int max_iterations = 20;
+  int max_iterations = 40;
   int load_steps = 100;
   double increment = 0.0;  // s; 0 = end_time / load_steps
   bool adaptive = true;
   int easy_iterations = 4;
-  int max_step_cuts = 5;
+  int max_step_cuts = 8;
   int active_set_passes = 3;  // contact changes re-solved within one increment
 };
 
