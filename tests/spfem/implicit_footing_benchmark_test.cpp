@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
 #include "benchmarks/driver.hpp"
+#include "benchmarks/material_points.hpp"
+#include "common/lattice.hpp"
 #include "common/scene_loader.hpp"
 #include "spfem/method.hpp"
 
@@ -35,6 +38,40 @@ TEST(ImplicitFootingBenchmark, BearingPressureWithinTenPercentOfPrandtlAtCoarseS
               run.wall_seconds);
   EXPECT_LT(bearing.rel_error, 0.1);
   std::filesystem::remove_all(dir);
+}
+
+TEST(ImplicitFootingBenchmark, NewtonConvergesQuadraticallyBeforeFullPlasticity) {
+  // Arrange: the same coarse footing, its first four increments (w/B up to 0.008, q/c_u up to
+  // about 2.4: plastic only at the footing's corner)
+  const Scene scene = load_scene(std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing.toml",
+                                 {"spacing=0.25"});
+  MethodRegistry methods;
+  spfem::register_ispfem(methods);
+  Particles particles = sample_bodies(scene);
+  initialise_material_points(scene, particles);
+  std::unique_ptr<Solver> solver = methods.find("ispfem").make(scene);
+  solver->initialise(scene, particles);
+  // Act
+  double time = 0.0;
+  for (int increment = 0; increment < 4; ++increment) time += solver->step(scene, particles, time);
+  // Assert: on each increment, the last pair (r_k, r_k+1) with r_k below 1e-2 and r_k+1 above
+  // the round-off floor (1e-12; relative residuals reach 1e-14) has log r_k+1 / log r_k > 1.8
+  const Json diagnostics = solver->diagnostics();
+  const Json& history = *diagnostics.find("newton")->find("residual_history");
+  ASSERT_EQ(history.elements().size(), 4u);
+  for (const Json& increment : history.elements()) {
+    const auto& r = increment.elements();
+    double ratio = 0.0;
+    for (std::size_t k = r.size() - 1; k >= 1; --k) {
+      const double before = r[k - 1].number();
+      const double after = r[k].number();
+      if (after < 1e-12 || !(before < 1e-2)) continue;
+      ratio = std::log(after) / std::log(before);
+      break;
+    }
+    std::printf("iterations %zu, last log r_k+1 / log r_k %.2f\n", r.size() - 1, ratio);
+    EXPECT_GT(ratio, 1.8);
+  }
 }
 
 }  // namespace
