@@ -65,7 +65,19 @@ DofMap eliminate(std::size_t n_nodes, const std::vector<NodeConstraint>& constra
       map.node.push_back(static_cast<std::int32_t>(i));
     };
     if (held[i] != 0) {
+      // In no triangle: nothing but its boundaries can move it. It follows the boundary that
+      // touches it (its normal motion, none along it) and stays put otherwise.
       map.constrained[i] = 1;
+      if (n.fixed) {
+        map.prescribed[i] = n.fixed_value;
+      } else if (n.n_normals == 2) {
+        Mat2 a;
+        a.row(0) = n.normal[0].transpose();
+        a.row(1) = n.normal[1].transpose();
+        map.prescribed[i] = a.inverse() * Vec2(n.value[0], n.value[1]);
+      } else if (n.n_normals == 1) {
+        map.prescribed[i] = n.value[0] * n.normal[0];
+      }
     } else if (n.fixed) {
       map.constrained[i] = 1;
       map.prescribed[i] = n.fixed_value;

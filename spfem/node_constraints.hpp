@@ -47,8 +47,9 @@ struct DofMap {
 };
 
 /// Builds the map of `n_nodes` nodes from `constraints`; nodes flagged in `held` (in no
-/// triangle: nothing holds them) are fixed where they are. Two normal constraints with different
-/// normals fix the node (a corner), their prescribed normal motions combined.
+/// triangle: no stiffness) have no unknowns: they follow the boundaries that touch them (the
+/// normal motion only for a normal constraint) and stay put otherwise. Two normal constraints with
+/// different normals fix the node (a corner), their prescribed normal motions combined.
 DofMap eliminate(std::size_t n_nodes, const std::vector<NodeConstraint>& constraints,
                  const std::vector<std::uint8_t>& held);
 
