@@ -63,7 +63,8 @@ TEST(SceneLoader, FillsEveryDefaultFromThePapers) {
   EXPECT_EQ(s.walls[0].condition, WallCondition::no_slip);
   EXPECT_TRUE(s.walls[0].velocity.empty());
   EXPECT_DOUBLE_EQ(s.spfem.alpha_factor, 1.5);
-  EXPECT_EQ(s.spfem_implicit.max_iterations, 20);
+  EXPECT_EQ(s.spfem_implicit.max_iterations, 40);  // a footing increment after a cut needs 13-18
+  EXPECT_EQ(s.spfem_implicit.max_step_cuts, 8);
   EXPECT_EQ(s.bodies[0].material_index, 0);
 }
 
