@@ -128,7 +128,7 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     discretisation_.update(particles.position);
   }
   const SmoothingCells& cells = discretisation_.cells();
-  std::vector<std::uint8_t> held(n, 0);  // in no triangle: nothing holds it, it stays put
+  std::vector<std::uint8_t> held(n, 0);  // in no triangle: no stiffness, no unknowns (DofMap)
   for (std::size_t i = 0; i < n; ++i) held[i] = cells.area[i] > 0.0 ? 0 : 1;
 
   // Contacts at the start; a released node is let go until it no longer touches any boundary
