@@ -63,6 +63,8 @@ struct MethodInfo {
   std::string name;     // "sph", "espfem", "ispfem"
   std::string summary;  // one line
   std::function<std::unique_ptr<Solver>(const Scene&)> make;
+  // false: quasi-static (ispfem): it has nothing to say on a dynamic scene (a collapse)
+  bool dynamic = true;
 };
 
 class MethodRegistry {

@@ -68,6 +68,15 @@ Setup make_setup(const Scene& scene) {
 }
 
 IspfemSetup make_implicit_setup(const Scene& scene) {
+  // Quasi-static: a body set moving cannot be honoured (Newmark dynamics is not implemented), and
+  // a run would "complete" standing still (bar.toml: period NaN)
+  for (const Body& b : scene.bodies) {
+    if (b.initial_velocity.squaredNorm() > 0.0) {
+      throw InputError("body." + b.name +
+                       ".initial_velocity: ispfem is quasi-static and cannot start a body moving "
+                       "(implicit dynamics is not implemented); run this scene with sph or espfem");
+    }
+  }
   IspfemSetup setup = make_setup<IspfemSetup>(scene);
   setup.implicit = scene.spfem_implicit;
   return setup;
@@ -159,7 +168,8 @@ void register_ispfem(MethodRegistry& registry) {
   registry.add({"ispfem",
                 "implicit (Newton-Raphson) smoothed particle finite element method, quasi-static "
                 "(Zhang, Yuan & Dai 2018; papers/004)",
-                [](const Scene& scene) { return std::make_unique<IspfemMethod>(scene); }});
+                [](const Scene& scene) { return std::make_unique<IspfemMethod>(scene); },
+                /*dynamic=*/false});
 }
 
 }  // namespace duet::spfem

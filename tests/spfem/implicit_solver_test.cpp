@@ -8,8 +8,11 @@
 
 #include <string>
 
+#include "common/input_error.hpp"
+#include "common/scene_loader.hpp"
 #include "common/solver.hpp"
 #include "constitutive/registry.hpp"
+#include "spfem/method.hpp"
 
 namespace duet::spfem {
 namespace {
@@ -72,6 +75,20 @@ TEST(ImplicitSolver, BlockOnNoSlipFloorPressesWithItsWeight) {
   const Vec2 f = solver.boundary_forces()[0];
   EXPECT_NEAR(f.y(), -78.48, 78.48 * 1e-8);
   EXPECT_NEAR(f.x(), 0.0, 78.48 * 1e-8);
+}
+
+TEST(ImplicitSolver, SceneThatStartsABodyMovingIsRefusedNamingTheKey) {
+  // bar.toml sets the bar moving: quasi-static ispfem cannot honour it (it "completed" with a
+  // NaN period before)
+  const Scene scene = load_scene(std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/bar.toml", {});
+  MethodRegistry methods;
+  register_ispfem(methods);
+  try {
+    methods.find("ispfem").make(scene);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("initial_velocity"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
