@@ -1,6 +1,7 @@
 #pragma once
-// The explicit SPFEM as the driver sees it: a Solver built from a Scene (walls, rigid bodies,
-// loads, [spfem] options), registered under the name "espfem".
+// The explicit and the implicit SPFEM as the driver sees them: Solvers built from a Scene (walls,
+// rigid bodies, loads, [spfem] and [spfem.implicit] options), registered under the names "espfem"
+// and "ispfem".
 
 #include "common/solver.hpp"
 
