@@ -45,14 +45,6 @@ std::array<Vec2, 3> shape_gradients(const Vec2& x0, const Vec2& x1, const Vec2& 
           Vec2(x0.y() - x1.y(), x1.x() - x0.x()) / twice};
 }
 
-/// Bound on the norm of the in-plane tangent acting between two gradients: the model's own
-/// tangent_bound where it gives one (hypoplastic: L + N), else |lambda| + 2 G with
-/// lambda = K - 2 G / 3 (= K + 4 G / 3 for lambda >= 0): see ExplicitSolver::time_step.
-double block_modulus(const constitutive::ElasticModuli& e) {
-  if (e.tangent_bound > 0.0) return e.tangent_bound;
-  return std::abs(e.bulk - 2.0 * e.shear / 3.0) + 2.0 * std::abs(e.shear);
-}
-
 /// M / |sigma| (1/strain) for a model whose tangent bound M scales with the stress (the
 /// hypoplastic one, homogeneous of degree 1: at -p I M = 689 p for the sand collapse), 0 for a
 /// model that gives no bound (elasticity, Drucker-Prager: their stiffness does not grow with

@@ -298,7 +298,7 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
       // soil (along the normal into the soil)
       const Vec2 r = external_force_[i] - f_int[i];
       const double pull = r.dot(c.normal);
-      const double size = std::max(1e-9 * std::sqrt(std::max(0.0, r.squaredNorm())), 1e-12);
+      const double size = std::max(1e-9 * r.norm(), 1e-12);
       // Walls hold the nodes they touch both ways (a free-slip wall is mostly a symmetry plane,
       // which carries the cavity's tensile hoop stress); a rigid body lets go of a tensile node.
       if (b.rigid_body && b.condition != NodeCondition::bonded && pull > size && !settling_) {
@@ -388,7 +388,6 @@ double ImplicitSolver::step(Particles& particles, double time, double end_time) 
   double dt = std::min(increment_, left);
   if (left - dt < 1e-6 * nominal) dt = left;  // no sliver of an increment at the end
   int cuts = 0;
-  std::vector<double> last;
   while (true) {
     const Attempt attempt = solve_increment(particles, time, time + dt);
     if (attempt.converged) {

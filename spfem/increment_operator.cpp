@@ -56,7 +56,7 @@ IncrementOperator::IncrementOperator(
       start_cells_(discretisation.cells()),
       start_strips_(discretisation.wall_strips().edges),
       wall_increment_(std::move(wall_increment)),
-      timers_(timers) {
+      timers_(timers != nullptr ? timers : &own_timers_) {
   // The layer's shape tests and wedge branches as at the increment's start (smoothing.hpp)
   discretisation_.freeze_layer_branches(true);
   const std::size_t n = start.size();
@@ -75,10 +75,7 @@ IncrementOperator::IncrementOperator(
       const constitutive::ElasticModuli e = models_[m]->moduli(
           start.stress[i],
           std::span<const double>(start.internal.of(i), models_[m]->internal_variables().size()));
-      // the explicit solver's time-step modulus: the tangent bound, else |lambda| + 2 G
-      block_modulus_[i] = e.tangent_bound > 0.0
-                              ? e.tangent_bound
-                              : std::abs(e.bulk - 2.0 * e.shear / 3.0) + 2.0 * std::abs(e.shear);
+      block_modulus_[i] = block_modulus(e);  // as the explicit solver's
     }
   }
 }
@@ -164,8 +161,7 @@ bool IncrementOperator::evaluate(const std::vector<Vec2>& u) {
       edge.b_wall = start.b_wall + wall_increment_[2 * e + 1];
     }
   }
-  Timers scratch;
-  Timers& timers = timers_ != nullptr ? *timers_ : scratch;
+  Timers& timers = *timers_;
   {
     ScopedTimer t(timers, Phase::mesh);
     discretisation_.refill(position_);
@@ -193,8 +189,7 @@ bool IncrementOperator::evaluate(const std::vector<Vec2>& u) {
 }
 
 void IncrementOperator::assemble_tangent(const DofMap& dofs) {
-  Timers scratch;
-  ScopedTimer timer(timers_ != nullptr ? *timers_ : scratch, Phase::assembly);
+  ScopedTimer timer(*timers_, Phase::assembly);
   const std::size_t n = start_.size();
   // The geometric part of rows with layer or wall-strip terms (their weights are not A_e / 3
   // and depend on edge lengths and turns): by central differences of the row's own terms

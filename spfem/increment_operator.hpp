@@ -79,6 +79,7 @@ class IncrementOperator {
   SparseMatrix tangent_;
   // Rows with boundary-layer or wall-strip terms: d(A_k b_kl)/dx_m by central differences
   std::vector<std::vector<Vec2>> row_derivative_;
+  Timers own_timers_;         // where the phases go when the caller passes no Timers
   Timers* timers_ = nullptr;  // mesh (refill), constitutive, assembly
   // Stiffness stabilisation (spfem.stiffness_stabilisation > 0): W on the nodes' initial
   // positions, M_e from the moduli at the increment's start, its force added to F_int

@@ -346,7 +346,8 @@ void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, s
   const auto move = [&](Index m, const Vec2& d) {
     points[m] += d;
     if (strips == nullptr) return;
-    for (WallEdge& e : walls->edges) {
+    for (Index j = walls->edge_offset[m]; j < walls->edge_offset[m + 1]; ++j) {  // m's edges
+      WallEdge& e = walls->edges[walls->node_edges[j]];
       if (!e.free_slip) continue;
       if (e.a == m) e.a_wall += d;
       if (e.b == m) e.b_wall += d;
