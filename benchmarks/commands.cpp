@@ -1,5 +1,6 @@
 #include "benchmarks/commands.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "benchmarks/reports.hpp"
 #include "benchmarks/scene_input.hpp"
 #include "common/input_error.hpp"
+#include "common/interrupt.hpp"
 #include "common/suggest.hpp"
 
 namespace duet {
@@ -66,7 +68,15 @@ struct RunArgs {
   std::vector<std::string> sets;
   std::string out;
   bool quiet = false;
+  bool force = false;
 };
+
+/// 0 completed, 3 failed, 128 + signal interrupted.
+int run_exit_status(const RunSummary& summary) {
+  if (summary.completed()) return 0;
+  if (summary.status == "interrupted") return interrupted_exit_status(pending_interrupt());
+  return 3;
+}
 
 }  // namespace
 
@@ -79,17 +89,27 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
   cmd->add_option("--out", args->out, "output folder (default runs/<scene>-<method>-dp<spacing>)");
   cmd->add_flag("--quiet", args->quiet, "no progress display");
-  cmd->callback([args, &exit_code] {
+  cmd->add_flag("--force", args->force,
+                "run even when the estimated memory exceeds the machine's (refused otherwise)");
+  cmd->callback([args, cmd, &exit_code] {
     std::vector<std::string> overrides = args->sets;
-    if (args->spacing != 0.0) overrides = with_spacing(overrides, args->spacing);
+    if (cmd->count("--spacing") > 0) {
+      if (!(args->spacing > 0.0) || !std::isfinite(args->spacing)) {
+        throw InputError("--spacing " + format_number(args->spacing) +
+                         ": expected a particle spacing (m) > 0");
+      }
+      overrides = with_spacing(overrides, args->spacing);
+    }
     const Scene scene = load_scene_checked(args->scene, overrides);
     const MethodInfo& method = builtin_methods().find(args->method);
+    refuse_if_too_large(scene, method, args->force);
     RunOptions options;
     options.out_dir = args->out.empty() ? default_run_dir(scene, method.name) : args->out;
     options.show_progress = !args->quiet;
+    prepare_output_folder(options.out_dir);
     const RunSummary summary = run_scene(scene, method, options);
     std::cout << compare_markdown({summary}, 0.0) << "results: " << options.out_dir << '\n';
-    exit_code = summary.completed() ? 0 : 3;
+    exit_code = run_exit_status(summary);
   });
 }
 
@@ -131,12 +151,16 @@ void add_compare_command(CLI::App& app, int& exit_code) {
       scenes.push_back(load_scene_checked(args->scene, with_spacing(args->sets, dp)));
     if (args->target < 0.0)
       throw InputError("--target must be positive (relative error, e.g. 0.05)");
+    for (const MethodInfo* method : methods) {
+      for (const Scene& scene : scenes) refuse_if_too_large(scene, *method, false);
+    }
 
     const std::string out = args->out.empty() ? "runs/compare-" + base.name : args->out;
-    std::filesystem::create_directories(out);
+    prepare_output_folder(out);
     std::vector<RunSummary> runs;
     for (const MethodInfo* method : methods) {
       for (const Scene& scene : scenes) {
+        if (pending_interrupt()) break;
         RunOptions options;
         options.out_dir = out + "/" + method->name + "-dp" + format_number(scene.spacing);
         std::cerr << "duet: " << method->name << " at spacing " << scene.spacing << " m\n";
@@ -147,7 +171,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
     write_compare_markdown(out + "/compare.md", runs, args->target);
     plot("compare.py", {out + "/compare.csv", out + "/compare.png", base.name});
     std::cout << compare_markdown(runs, args->target) << "results: " << out << '\n';
-    exit_code = 0;
+    exit_code = pending_interrupt() ? interrupted_exit_status(pending_interrupt()) : 0;
   });
 }
 
@@ -204,12 +228,13 @@ void add_stability_command(CLI::App& app, int& exit_code) {
       std::vector<std::string> overrides = args->sets;
       for (const auto& [key, value] : cell) overrides.push_back(key + "=" + value);
       scenes.push_back(load_scene_checked(args->scene, overrides));
+      refuse_if_too_large(scenes.back(), method, false);
     }
     const std::string out =
         args->out.empty() ? "runs/stability-" + scenes.front().name + "-" + method.name : args->out;
-    std::filesystem::create_directories(out);
+    prepare_output_folder(out);
     std::vector<StabilityCell> cells;
-    for (std::size_t i = 0; i < grid.size(); ++i) {
+    for (std::size_t i = 0; i < grid.size() && !pending_interrupt(); ++i) {
       std::string name;
       for (const auto& [key, value] : grid[i])
         name += (name.empty() ? "" : "_") + key + "=" + value;
@@ -222,7 +247,7 @@ void add_stability_command(CLI::App& app, int& exit_code) {
     plot("stability.py", {out + "/stability.csv", out + "/stability.png",
                           scenes.front().name + " (" + method.name + ")"});
     std::cout << "results: " << out << '\n';
-    exit_code = 0;
+    exit_code = pending_interrupt() ? interrupted_exit_status(pending_interrupt()) : 0;
   });
 }
 
@@ -255,6 +280,7 @@ void add_demo_command(CLI::App& app, int& exit_code) {
       // The collapse is dynamic: a quasi-static method (ispfem) has nothing to say about it
       if (!builtin_methods().find(name).dynamic) continue;
       for (const char* spacing : {"0.01", "0.0075"}) {
+        if (pending_interrupt()) break;
         const Scene scene = load_scene_checked(scene_path, {std::string("spacing=") + spacing});
         RunOptions options;
         options.out_dir = *out + "/" + name + "-dp" + spacing;
@@ -266,7 +292,7 @@ void add_demo_command(CLI::App& app, int& exit_code) {
     write_compare_markdown(*out + "/compare.md", runs, 0.0);
     plot("compare.py", {*out + "/compare.csv", *out + "/compare.png", "collapse (demo)"});
     std::cout << compare_markdown(runs, 0.0) << "results: " << *out << '\n';
-    exit_code = 0;
+    exit_code = pending_interrupt() ? interrupted_exit_status(pending_interrupt()) : 0;
   });
 }
 

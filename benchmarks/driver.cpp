@@ -1,16 +1,23 @@
 #include "benchmarks/driver.hpp"
 
 #include <unistd.h>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <optional>
 
 #include "benchmarks/git_commit.hpp"
 #include "benchmarks/material_points.hpp"
 #include "benchmarks/reports.hpp"
+#include "common/energy_budget.hpp"
 #include "common/h5_writer.hpp"
+#include "common/input_error.hpp"
+#include "common/interrupt.hpp"
 #include "common/kinetic_energy.hpp"
 #include "common/lattice.hpp"
 #include "common/measures.hpp"
@@ -21,6 +28,52 @@ namespace duet {
 
 std::string default_run_dir(const Scene& scene, const std::string& method) {
   return "runs/" + scene.name + "-" + method + "-dp" + format_number(scene.spacing);
+}
+
+void prepare_output_folder(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(dir, error) && !fs::is_directory(dir, error)) {
+    throw InputError("--out " + dir + ": exists and is not a folder; expected an output folder");
+  }
+  fs::create_directories(dir, error);
+  if (error) {
+    throw InputError("--out " + dir + ": cannot create the output folder (" + error.message() +
+                     "); expected a folder that can be created and written");
+  }
+  const fs::path probe = fs::path(dir) / ".duet-write-probe";
+  {
+    std::ofstream out(probe);
+    out << "probe\n";
+    out.flush();
+    if (!out) {
+      throw InputError("--out " + dir + ": cannot write into the output folder (" +
+                       std::strerror(errno) + "); expected a writable folder");
+    }
+  }
+  fs::remove(probe, error);
+}
+
+RunEstimate estimate_run(const Scene& scene, const MethodInfo& method) {
+  RunEstimate e;
+  e.particles = estimated_particles(scene);
+  constexpr double base = 200.0e6;  // the program, libraries and output buffers
+  e.bytes = base + e.particles * method.bytes_per_particle;
+  e.machine_bytes =
+      static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  return e;
+}
+
+void refuse_if_too_large(const Scene& scene, const MethodInfo& method, bool force) {
+  const RunEstimate e = estimate_run(scene, method);
+  if (force || e.bytes <= 0.9 * e.machine_bytes) return;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "%s at spacing %g m: about %.3g particles, %.3g GB through %s, more than this "
+                "machine's %.3g GB; expected a coarser spacing (or --force to try anyway)",
+                scene.path.c_str(), scene.spacing, e.particles, e.bytes / 1e9, method.name.c_str(),
+                e.machine_bytes / 1e9);
+  throw InputError(text);
 }
 
 namespace {
@@ -46,7 +99,7 @@ Json failure_json(const Failure& f) {
 
 RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  std::filesystem::create_directories(options.out_dir);
+  prepare_output_folder(options.out_dir);
 
   Particles particles = sample_bodies(scene);
   initialise_material_points(scene, particles);
@@ -65,6 +118,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   double time = 0.0;
   long steps = 0;
   std::optional<Failure> failure;
+  int interrupted_by = 0;  // the signal that ended the run, or 0
   std::vector<Vec2> previous_position = particles.position;
 
   {
@@ -77,7 +131,8 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   double next_output = output_interval;
   double next_sample = sample_interval;
 
-  const StateChecks checks(scene);
+  const StateChecks checks(scene, particles);
+  EnergyBudget budget(scene, particles);
   KineticEnergyRecord energy;
   energy.record(time, kinetic_energy(particles));
   while (time < end_time * (1.0 - 1e-12) && !failure) {
@@ -88,6 +143,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       time += dt;
       ++steps;
       energy.record(time, kinetic_energy(particles));
+      budget.record(time, particles, solver->reactions());
     } catch (const NumericalFailure& e) {
       failure = Failure{e.what(), time, e.particle()};
       if (e.particle() >= 0 && static_cast<std::size_t>(e.particle()) < particles.size()) {
@@ -98,6 +154,17 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     if (auto problem = checks.check(particles, previous_position, previous_time, time)) {
       failure = Failure{problem->reason, time, problem->particle, problem->position};
       break;
+    }
+    if (auto problem = checks.check_lift_off(particles)) {
+      failure = Failure{problem->reason, time, problem->particle, problem->position};
+      break;
+    }
+    // A quasi-static method's velocities are increments over a load step, not inertia.
+    if (method.dynamic) {
+      if (auto reason = energy_runaway(scene.checks, energy.end, budget)) {
+        failure = Failure{*reason, time};
+        break;
+      }
     }
     if (time >= next_sample) {
       measures.sample(time, particles, solver->reactions());
@@ -110,6 +177,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       next_output += output_interval;
     }
     if (progress) progress->update(time, steps);
+    if ((interrupted_by = pending_interrupt()) != 0) break;
   }
   // The last state (or the state at failure) is always a frame.
   {
@@ -118,7 +186,11 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   }
   if (!failure) measures.sample(time, particles, solver->reactions());
   writer.write_series(measures.names(), measures.columns());
-  if (progress) progress->finish(failure ? "failed: " + failure->reason : "completed");
+  const std::string status = failure ? "failed" : interrupted_by ? "interrupted" : "completed";
+  if (interrupted_by) {
+    failure = Failure{"interrupted by signal " + std::to_string(interrupted_by), time};
+  }
+  if (progress) progress->finish(status == "completed" ? status : status + ": " + failure->reason);
 
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -129,9 +201,10 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   metrics["particles"] = static_cast<long>(particles.size());
   metrics["steps"] = steps;
   metrics["wall_seconds"] = wall;
-  metrics["status"] = failure ? "failed" : "completed";
+  metrics["status"] = status;
   metrics["failure"] = failure ? failure_json(*failure) : Json();
   metrics["end_time"] = time;
+  if (interrupted_by) metrics["signal"] = static_cast<long>(interrupted_by);
   metrics["measures"] = measures.final_values();
   metrics["accuracy"] = measures.accuracy();
   Json timing = solver->timers().to_json();
@@ -139,6 +212,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   metrics["timing"] = timing;
   metrics["diagnostics"] = solver->diagnostics();
   metrics["kinetic_energy"] = energy.to_json();
+  metrics["energy_input"] = budget.to_json();
   metrics["commit"] = source_commit();
   metrics["scene_file"] = scene.path;
   write_json(options.out_dir + "/metrics.json", metrics);

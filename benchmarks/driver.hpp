@@ -22,6 +22,23 @@ struct RunOptions {
 /// summary and metrics.json). Throws InputError for bad input discovered while setting up.
 RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOptions& options);
 
+/// Creates `dir` (and its parents) and proves it writable by writing and removing a file; throws
+/// InputError (exit 2) naming the folder and why, before any work is done.
+void prepare_output_folder(const std::string& dir);
+
+/// What a run of `scene` through `method` would take: particles (from the bodies' areas) and peak
+/// memory (the method's measured bytes per particle).
+struct RunEstimate {
+  double particles = 0.0;
+  double bytes = 0.0;
+  double machine_bytes = 0.0;  // physical memory of this machine
+};
+RunEstimate estimate_run(const Scene& scene, const MethodInfo& method);
+
+/// Throws InputError with the estimate when the run would need more memory than the machine has
+/// (unless `force`): refused in a second instead of a std::bad_alloc after minutes.
+void refuse_if_too_large(const Scene& scene, const MethodInfo& method, bool force);
+
 /// Default output folder for a run: runs/<scene>-<method>-dp<spacing>.
 std::string default_run_dir(const Scene& scene, const std::string& method);
 

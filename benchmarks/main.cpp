@@ -1,5 +1,6 @@
 // The duet command line program. It holds no physics: each subcommand lives in its own file.
-// Exit status: 0 success, 1 internal error, 2 bad input, 3 a run that failed numerically.
+// Exit status: 0 success, 1 internal error, 2 bad input, 3 a run that failed numerically,
+// 128 + N a run interrupted by signal N (130 SIGINT, 143 SIGTERM).
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -7,12 +8,14 @@
 #include "benchmarks/commands.hpp"
 #include "benchmarks/element_command.hpp"
 #include "common/input_error.hpp"
+#include "common/interrupt.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
       "duet: run one geomechanics scene through SPH and SPFEM and score accuracy against cost"};
   app.require_subcommand(1);
   int exit_code = 0;
+  duet::install_interrupt_handlers();
   duet::add_run_command(app, exit_code);
   duet::add_compare_command(app, exit_code);
   duet::add_stability_command(app, exit_code);

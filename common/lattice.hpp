@@ -22,6 +22,13 @@ namespace duet {
 /// belong to the models).
 Particles sample_bodies(const Scene& scene);
 
+/// How many particles body `body_index` samples to (the rule of sample_body, nothing stored).
+std::size_t count_body_samples(const Scene& scene, std::size_t body_index);
+
+/// Particles the scene samples to, estimated from the bodies' areas (area / dp^2), without
+/// visiting the lattice: the figure for refusing a run that would not fit before any work.
+double estimated_particles(const Scene& scene);
+
 /// The same for one body (appended to `particles`), for tests and tools.
 void sample_body(const Scene& scene, std::size_t body_index, Particles& particles);
 

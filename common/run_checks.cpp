@@ -1,12 +1,40 @@
 #include "common/run_checks.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "common/geometry.hpp"
 
 namespace duet {
 
-StateChecks::StateChecks(const Scene& scene) : scene_(scene) {}
+namespace {
+
+bool fixed(const Wall& wall) {
+  if (wall.radial) return false;
+  for (const Knot& k : wall.velocity) {
+    if (k.value != Vec2::Zero()) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+StateChecks::StateChecks(const Scene& scene, const Particles& initial) : scene_(scene) {
+  if (scene.checks.lift_off_fraction <= 0.0) return;
+  const double reach = scene.spacing * (1.0 + 1e-9);
+  for (std::size_t w = 0; w < scene.walls.size(); ++w) {
+    const Wall& wall = scene.walls[w];
+    if (wall.condition != WallCondition::no_slip || !fixed(wall)) continue;
+    Contact contact{w, {}};
+    for (std::size_t i = 0; i < initial.size(); ++i) {
+      if (polyline_distance(initial.position[i], wall.points) <= reach) {
+        contact.particles.push_back(i);
+      }
+    }
+    if (!contact.particles.empty()) contacts_.push_back(std::move(contact));
+  }
+}
 
 namespace {
 
@@ -64,6 +92,52 @@ std::optional<StateProblem> StateChecks::check(const Particles& particles,
     }
   }
   return std::nullopt;
+}
+
+std::optional<StateProblem> StateChecks::check_lift_off(const Particles& particles) const {
+  const double distance = scene_.checks.lift_off_distance * scene_.spacing;
+  for (const Contact& c : contacts_) {
+    const Wall& wall = scene_.walls[c.wall];
+    std::size_t away = 0;
+    double furthest = 0.0;
+    std::size_t which = c.particles.front();
+    for (std::size_t i : c.particles) {
+      const double d = polyline_distance(particles.position[i], wall.points);
+      if (d > distance) ++away;
+      if (d > furthest) {
+        furthest = d;
+        which = i;
+      }
+    }
+    const double fraction = static_cast<double>(away) / static_cast<double>(c.particles.size());
+    if (fraction > scene_.checks.lift_off_fraction) {
+      char buffer[320];
+      std::snprintf(buffer, sizeof buffer,
+                    "lifted off no-slip wall '%s': %.0f %% of the %zu particles on it at t = 0 "
+                    "are more than %g spacings (%g m) from it, up to %.4g m "
+                    "(checks.lift_off_fraction = %g)",
+                    wall.name.c_str(), 100.0 * fraction, c.particles.size(),
+                    scene_.checks.lift_off_distance, distance, furthest,
+                    scene_.checks.lift_off_fraction);
+      return StateProblem{buffer, static_cast<long>(which), particles.position[which]};
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> energy_runaway(const RunCheckOptions& options, double kinetic,
+                                          const EnergyBudget& budget) {
+  if (options.kinetic_energy_factor <= 0.0 || budget.incomplete()) return std::nullopt;
+  const double limit = options.kinetic_energy_factor * std::max(budget.input(), 0.0);
+  if (kinetic <= limit || kinetic <= budget.floor()) return std::nullopt;
+  char buffer[320];
+  std::snprintf(buffer, sizeof buffer,
+                "kinetic energy %.4g J/m exceeds %g x the energy put in (%.4g J/m: gravity %.4g, "
+                "walls and rigid bodies %.4g, loads %.4g, initial %.4g): the method made energy "
+                "(checks.kinetic_energy_factor)",
+                kinetic, options.kinetic_energy_factor, budget.input(), budget.gravity_work(),
+                budget.boundary_work(), budget.load_work(), budget.initial_kinetic());
+  return std::string(buffer);
 }
 
 }  // namespace duet

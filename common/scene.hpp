@@ -111,6 +111,18 @@ struct Time {
   double output_interval = 0.0;  // s; default end_time / 50
 };
 
+/// Thresholds of the driver's checks of a running state, beyond the always-on ones (non-finite
+/// values, leaving the domain, crossing a wall). 0 turns a check off.
+struct RunCheckOptions {
+  // Kinetic energy above this multiple of the energy put in (initial kinetic energy + work of
+  // gravity, loads, walls and rigid bodies) + a floor: the method made energy (a blow-up).
+  double kinetic_energy_factor = 2.0;
+  // A fixed no-slip wall: the run fails when more than this fraction of the particles within one
+  // spacing of it at t = 0 are further than lift_off_distance spacings from it.
+  double lift_off_fraction = 0.5;
+  double lift_off_distance = 2.0;  // spacings
+};
+
 struct Domain {
   Vec2 min = Vec2::Zero();
   Vec2 max = Vec2::Zero();
@@ -258,6 +270,7 @@ struct Scene {
   InitialStress initial_stress;
   StrengthReduction strength_reduction;
   Time time;
+  RunCheckOptions checks;
   Domain domain;
   std::vector<Measure> measures;
   std::vector<Reference> references;

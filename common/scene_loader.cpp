@@ -23,7 +23,8 @@ namespace {
 const std::vector<std::string> kRootKeys = {
     "name",   "description",    "spacing",   "gravity", "confined", "time",
     "domain", "initial_stress", "material",  "body",    "wall",     "rigid_body",
-    "load",   "measure",        "reference", "sph",     "spfem",    "strength_reduction"};
+    "load",   "measure",        "reference", "sph",     "spfem",    "strength_reduction",
+    "checks"};
 const std::vector<std::string> kCollections = {"material", "body",    "wall",     "rigid_body",
                                                "load",     "measure", "reference"};
 const std::vector<std::string> kTimeKeys = {"end_time", "output_interval"};
@@ -38,6 +39,8 @@ const std::vector<std::string> kLoadKeys = {"body", "min", "max", "force"};
 const std::vector<std::string> kMeasureKeys = {"kind", "target",        "component", "at",
                                                "time", "min_thickness", "divide_by", "scale"};
 const std::vector<std::string> kStrengthReductionKeys = {"factor", "rule"};
+const std::vector<std::string> kCheckKeys = {"kinetic_energy_factor", "lift_off_fraction",
+                                             "lift_off_distance"};
 const std::vector<std::string> kReferenceKeys = {"value", "source", "tolerance"};
 const std::vector<std::string> kSphKeys = {
     "kernel",     "h_over_dp",   "alpha",          "beta",         "artificial_stress",
@@ -526,6 +529,17 @@ Scene read_scene(const toml::table& root, const SceneSource& source, const Mater
   scene.strength_reduction.rule = reduction.choice("rule", {"tangent", "angle"}, "tangent");
   reduction.finish();
 
+  SectionReader checks = section("checks", kCheckKeys);
+  scene.checks.kinetic_energy_factor =
+      checks.number("kinetic_energy_factor", scene.checks.kinetic_energy_factor,
+                    non_negative("a multiple of the energy put in (0: off)"));
+  scene.checks.lift_off_fraction =
+      checks.number("lift_off_fraction", scene.checks.lift_off_fraction,
+                    in_closed(0.0, 1.0, "a fraction (0: off)"));
+  scene.checks.lift_off_distance = checks.number(
+      "lift_off_distance", scene.checks.lift_off_distance, positive("a count of spacings"));
+  checks.finish();
+
   // Materials first: bodies refer to them.
   if (const toml::table* materials = r.table("material")) {
     toml::table& resolved_materials = resolved_child(resolved, "material");
@@ -567,8 +581,8 @@ Scene read_scene(const toml::table& root, const SceneSource& source, const Mater
                          resolved_child(resolved_child(resolved, "spfem"), "implicit"));
   scene.spfem_implicit = read_implicit(implicit);
 
-  r.finish({"time", "domain", "initial_stress", "strength_reduction", "material", "body", "wall",
-            "rigid_body", "load", "measure", "reference", "sph", "spfem"});
+  r.finish({"time", "domain", "initial_stress", "strength_reduction", "checks", "material", "body",
+            "wall", "rigid_body", "load", "measure", "reference", "sph", "spfem"});
 
   std::ostringstream text;
   text << "# " << scene.name << ": resolved scene (every default filled in)\n" << resolved << "\n";

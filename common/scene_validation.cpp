@@ -6,6 +6,7 @@
 
 #include "common/geometry.hpp"
 #include "common/input_error.hpp"
+#include "common/lattice.hpp"
 #include "common/suggest.hpp"
 
 namespace duet {
@@ -148,6 +149,30 @@ class Checker {
     }
   }
 
+  /// A body must sample to enough particles to be a body at all: at 0 or 1 particles every
+  /// measure of it is empty or NaN and no method has a gradient to compute.
+  void bodies_resolved() const {
+    constexpr std::size_t minimum = 4;
+    const double dp = scene_.spacing;
+    for (std::size_t i = 0; i < scene_.bodies.size(); ++i) {
+      const Body& b = scene_.bodies[i];
+      // Count only where it could fail (a large body is not visited cell by cell here).
+      if (std::abs(signed_area(b.outline)) / (dp * dp) > 100.0 * minimum) continue;
+      const std::size_t n = count_body_samples(scene_, i);
+      if (n >= minimum) continue;
+      const Vec2 size = b.max - b.min;
+      std::ostringstream what;
+      what.precision(6);
+      what << "samples to " << n << " particle" << (n == 1 ? "" : "s") << " at spacing " << dp
+           << " m (the body spans " << size.x() << " m x " << size.y() << " m)";
+      std::ostringstream expected;
+      expected.precision(3);
+      expected << "at least " << minimum << " particles per body: a spacing of at most "
+               << std::min(size.x(), size.y()) / 2.0 << " m, or a larger body";
+      fail("body." + b.name, what.str(), expected.str());
+    }
+  }
+
   void names() const {
     std::vector<std::string> bodies, boundaries, walls;
     for (const Body& b : scene_.bodies) bodies.push_back(b.name);
@@ -207,6 +232,7 @@ class Checker {
 void validate_scene(const Scene& scene, const toml::table& root, const SceneSource& source) {
   const Checker check(scene, root, source);
   check.bodies_inside_domain();
+  check.bodies_resolved();
   check.no_overlaps();
   check.bodies_supported();
   check.bodies_enclosed();

@@ -12,7 +12,7 @@
 namespace duet {
 
 /// Rules:
-/// - every body lies inside the domain;
+/// - every body lies inside the domain and samples to at least 4 particles at the spacing;
 /// - bodies do not overlap (they may touch along edges), and no rigid body overlaps a body;
 /// - under gravity, every body rests on something: the lowest point of its outline (the mean of
 ///   its lowest vertices along g) lies within one spacing of a wall, a rigid body or a body that

@@ -65,6 +65,9 @@ struct MethodInfo {
   std::function<std::unique_ptr<Solver>(const Scene&)> make;
   // false: quasi-static (ispfem): it has nothing to say on a dynamic scene (a collapse)
   bool dynamic = true;
+  // Peak memory per particle, measured (benchmarks/RESULTS.md "Reliability"): what `duet run`
+  // refuses a scene by before any work when it would not fit in the machine's memory.
+  double bytes_per_particle = 2048.0;
 };
 
 class MethodRegistry {

@@ -9,6 +9,7 @@
 
 #include "benchmarks/driver.hpp"
 #include "common/h5_writer.hpp"
+#include "common/input_error.hpp"
 #include "common/scene_loader.hpp"
 
 namespace duet {
@@ -18,6 +19,8 @@ struct BallisticOptions {
   double dt = 0.01;
   long throw_at_step = -1;  // throw NumericalFailure at this step
   long nan_at_step = -1;    // write a NaN stress at this step
+  long boost_at_step = -1;  // multiply every velocity by `boost` at this step (made energy)
+  double boost = 1.0;
 };
 
 class BallisticSolver final : public Solver {
@@ -32,6 +35,9 @@ class BallisticSolver final : public Solver {
       particles.displacement[i] += options_.dt * particles.velocity[i];
     }
     if (steps_ == options_.nan_at_step) particles.stress[5](1, 1) = std::nan("");
+    if (steps_ == options_.boost_at_step) {
+      for (Vec2& v : particles.velocity) v *= options_.boost;
+    }
     return options_.dt;
   }
   std::vector<Reaction> reactions() const override { return {}; }
@@ -151,6 +157,91 @@ TEST(Driver, SolverNumericalFailureIsReportedWithItsReason) {
   EXPECT_EQ(summary.failure_reason, "Newton did not converge");
   EXPECT_NEAR(summary.failure_time, 0.11, 1e-9);
   EXPECT_EQ(summary.steps, 11);
+}
+
+// The block carries 0.5 * 5 kg/m * (0.1 m/s)^2 = 0.025 J/m and nothing does work on it, so the
+// energy put in stays 0.025 J/m. The floor of the check is 1e-3 M (L / T)^2 =
+// 1e-3 * 5 * 13 = 0.065 J/m (domain diagonal sqrt(3^2 + 2^2) m, 1 s).
+TEST(Driver, KineticEnergyBeyondTwiceTheEnergyPutInIsAFailure) {
+  const Scene scene = load_scene_from_string(kScene, "moving-block.toml");
+  RunOptions options{out_dir("energy"), false};
+  // Speed x3 at step 40: 0.225 J/m, 9 times the 0.025 J/m put in, above the floor.
+  const RunSummary summary =
+      run_scene(scene, ballistic({.boost_at_step = 40, .boost = 3.0}), options);
+  EXPECT_EQ(summary.status, "failed");
+  EXPECT_NE(summary.failure_reason.find("kinetic energy 0.225 J/m exceeds 2 x the energy put in "
+                                        "(0.025 J/m"),
+            std::string::npos)
+      << summary.failure_reason;
+  EXPECT_NEAR(summary.failure_time, 0.40, 1e-9);
+}
+
+TEST(Driver, KineticEnergyWithinTwiceTheEnergyPutInCompletes) {
+  const Scene scene = load_scene_from_string(kScene, "moving-block.toml");
+  RunOptions options{out_dir("energy-within"), false};
+  // Speed x1.4: 0.049 J/m, 1.96 times the energy put in: within the factor 2.
+  const RunSummary summary =
+      run_scene(scene, ballistic({.boost_at_step = 40, .boost = 1.4}), options);
+  EXPECT_EQ(summary.status, "completed") << summary.failure_reason;
+}
+
+TEST(Driver, BodyLeavingAFixedNoSlipWallIsAFailure) {
+  std::string text = kScene;
+  text.replace(text.find("initial_velocity = [0.1, 0.0]"), 29, "initial_velocity = [0.0, 0.1]");
+  text += "[wall.floor]\npoints = [[-0.5, -0.0025], [0.5, -0.0025]]\ncondition = \"no-slip\"\n";
+  const Scene scene = load_scene_from_string(text, "moving-block.toml");
+  RunOptions options{out_dir("lift-off"), false};
+  const RunSummary summary = run_scene(scene, ballistic({}), options);
+  EXPECT_EQ(summary.status, "failed");
+  // The ten particles of the bottom row start 0.0075 m above the floor; they are more than two
+  // spacings (0.02 m) from it once 0.0075 + 0.1 t > 0.02: at step 13 (t = 0.13 s).
+  EXPECT_NE(summary.failure_reason.find("lifted off no-slip wall 'floor': 100 % of the 10 "
+                                        "particles"),
+            std::string::npos)
+      << summary.failure_reason;
+  EXPECT_NEAR(summary.failure_time, 0.13, 1e-9);
+}
+
+TEST(Driver, LiftOffCheckTurnedOffLetsTheBodyLeave) {
+  std::string text = kScene;
+  text.replace(text.find("initial_velocity = [0.1, 0.0]"), 29, "initial_velocity = [0.0, 0.1]");
+  text += "[wall.floor]\npoints = [[-0.5, 0.0], [0.5, 0.0]]\ncondition = \"no-slip\"\n";
+  text += "[checks]\nlift_off_fraction = 0.0\n";
+  const Scene scene = load_scene_from_string(text, "moving-block.toml");
+  RunOptions options{out_dir("lift-off-off"), false};
+  EXPECT_EQ(run_scene(scene, ballistic({}), options).status, "completed");
+}
+
+TEST(Driver, OutputFolderThatIsAFileOrCannotBeCreatedIsBadInput) {
+  const std::string file = out_dir("not-a-folder");
+  std::ofstream(file) << "x";
+  EXPECT_THROW(prepare_output_folder(file), InputError);
+  try {
+    prepare_output_folder(file + "/below");
+    FAIL() << "a folder below a file was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot create the output folder"), std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(file);
+}
+
+TEST(Driver, SceneNeedingMoreMemoryThanTheMachineIsRefusedUnlessForced) {
+  std::string text = kScene;
+  text.replace(text.find("spacing = 0.01"), 14, "spacing = 1e-6");
+  const Scene scene = load_scene_from_string(text, "moving-block.toml");
+  // 0.1 m x 0.05 m at 1 um: 5e9 particles.
+  const RunEstimate e = estimate_run(scene, ballistic({}));
+  EXPECT_NEAR(e.particles, 5e9, 1.0);
+  EXPECT_GT(e.bytes, 5e9 * 2048.0);
+  try {
+    refuse_if_too_large(scene, ballistic({}), false);
+    FAIL() << "a 5e9-particle scene was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("about 5e+09 particles"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_NO_THROW(refuse_if_too_large(scene, ballistic({}), true));
 }
 
 }  // namespace
