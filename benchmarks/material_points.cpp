@@ -65,6 +65,26 @@ void apply_geostatic_stress(const Scene& scene, double K0, Particles& particles)
   }
 }
 
+double stored_elastic_energy(const Scene& scene, const Particles& particles) {
+  const auto models = build_models(scene);
+  double energy = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const Mat3& sigma = particles.stress[i];
+    if (sigma.isZero(0.0)) continue;
+    const auto& model = *models[static_cast<std::size_t>(particles.material[i])];
+    const std::size_t width = model.internal_variables().size();
+    const constitutive::ElasticModuli e =
+        model.moduli(sigma, std::span<const double>(particles.internal.of(i), width));
+    const double p = sigma.trace() / 3.0;
+    const Mat3 s = sigma - p * Mat3::Identity();
+    double w = 0.0;
+    if (e.bulk > 0.0) w += p * p / (2.0 * e.bulk);
+    if (e.shear > 0.0) w += s.squaredNorm() / (4.0 * e.shear);
+    energy += particles.volume[i] * w;
+  }
+  return energy;
+}
+
 void initialise_material_points(const Scene& scene, Particles& particles) {
   initialise_internal_variables(build_models(scene), particles);
   if (scene.initial_stress.kind == InitialStressKind::geostatic) {

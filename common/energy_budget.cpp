@@ -1,15 +1,18 @@
 #include "common/energy_budget.hpp"
 
+#include <algorithm>
+
 #include "common/geometry.hpp"
 #include "common/kinetic_energy.hpp"
 
 namespace duet {
 
-EnergyBudget::EnergyBudget(const Scene& scene, const Particles& particles)
+EnergyBudget::EnergyBudget(const Scene& scene, const Particles& particles, double initial_elastic)
     : scene_(scene),
       initial_position_(particles.position),
       loaded_(loaded_particles(scene, particles)),
-      initial_kinetic_(kinetic_energy(particles)) {
+      initial_kinetic_(kinetic_energy(particles)),
+      initial_elastic_(initial_elastic) {
   for (const Wall& w : scene.walls) {
     if (w.radial) {
       incomplete_ = "wall '" + w.name + "' moves radially: its work is not computed";
@@ -20,7 +23,7 @@ EnergyBudget::EnergyBudget(const Scene& scene, const Particles& particles)
   for (double m : particles.mass) mass += m;
   const double length = (scene.domain.max - scene.domain.min).norm();
   const double speed = length / scene.time.end_time;
-  floor_ = 1e-3 * mass * speed * speed;
+  floor_ = 1e-6 * mass * speed * speed;
   boundary_power_ = boundary_power(0.0, {});
   load_power_ = load_power(0.0, particles);
 }
@@ -72,14 +75,25 @@ void EnergyBudget::record(double time, const Particles& particles,
   time_ = time;
 }
 
+void EnergyBudget::observe(double kinetic) {
+  const double ratio = kinetic / std::max(input(), floor_);
+  if (ratio > peak_ratio_) {
+    peak_ratio_ = ratio;
+    peak_ratio_time_ = time_;
+  }
+}
+
 Json EnergyBudget::to_json() const {
   Json j = Json::object();
   j["input"] = input();
   j["initial_kinetic"] = initial_kinetic_;
+  j["initial_elastic"] = initial_elastic_;
   j["gravity_work"] = gravity_work_;
   j["boundary_work"] = boundary_work_;
   j["load_work"] = load_work_;
   j["floor"] = floor_;
+  j["kinetic_over_input_max"] = peak_ratio_;
+  j["kinetic_over_input_max_time"] = peak_ratio_time_;
   j["incomplete"] = incomplete_ ? Json(*incomplete_) : Json();
   return j;
 }

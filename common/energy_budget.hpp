@@ -1,10 +1,12 @@
 #pragma once
 // The energy put into the particles since the start, for the driver's blow-up check: the kinetic
-// energy they started with, plus the work of gravity (sum_i m_i g . (x_i - x_i0)), of the scene's
+// and elastic energy they started with (the elastic part computed by the caller from the models:
+// common/ knows none), plus the work of gravity (sum_i m_i g . (x_i - x_i0)), of the scene's
 // loads and of moving walls and rigid bodies (the power -R . v, R the soil's force on the
-// boundary, integrated over each step by the trapezoidal rule). Dissipation only lowers the
-// kinetic energy below it; elastic energy stored at the start (an initial stress) can add to it,
-// hence the factor of the check. A method that makes energy (a tensile instability, a contact
+// boundary, integrated over each step by the trapezoidal rule). Dissipation and the strain energy
+// stored on the way only keep the kinetic energy below it; the factor of the check leaves room for
+// the estimate of the initial elastic energy (a tangent modulus for a nonlinear model) and the
+// time integration of the work. A method that makes energy (a tensile instability, a contact
 // that pumps particles) shows as kinetic energy well above it.
 
 #include <optional>
@@ -21,7 +23,7 @@ namespace duet {
 
 class EnergyBudget {
  public:
-  EnergyBudget(const Scene& scene, const Particles& particles);
+  EnergyBudget(const Scene& scene, const Particles& particles, double initial_elastic);
 
   /// Empty when every input is computed; otherwise why the budget is incomplete (a radial wall,
   /// whose work would need its traction, not its net force).
@@ -31,15 +33,22 @@ class EnergyBudget {
   void record(double time, const Particles& particles, const std::vector<Reaction>& reactions);
 
   /// Energy put in so far (J per metre of thickness).
-  double input() const { return initial_kinetic_ + gravity_work_ + boundary_work_ + load_work_; }
+  double input() const {
+    return initial_kinetic_ + initial_elastic_ + gravity_work_ + boundary_work_ + load_work_;
+  }
+  double initial_elastic() const { return initial_elastic_; }
   double initial_kinetic() const { return initial_kinetic_; }
   double gravity_work() const { return gravity_work_; }
   double boundary_work() const { return boundary_work_; }
   double load_work() const { return load_work_; }
   /// An energy below which no check fires, so that a run that barely moves never trips on
-  /// round-off: 1e-3 M (L / T)^2, M the particles' mass, L the domain's diagonal, T the end time
-  /// (a thousandth of the whole mass crossing the domain once in the run).
+  /// round-off: 1e-6 M (L / T)^2, M the particles' mass, L the domain's diagonal, T the end time
+  /// (a millionth of the energy of the whole mass crossing the domain once in the run).
   double floor() const { return floor_; }
+
+  /// Keeps the largest kinetic / max(input, floor) seen: how close a run came to the check.
+  void observe(double kinetic);
+  double peak_ratio() const { return peak_ratio_; }
 
   Json to_json() const;
 
@@ -52,6 +61,7 @@ class EnergyBudget {
   LoadedParticles loaded_;
   std::optional<std::string> incomplete_;
   double initial_kinetic_ = 0.0;
+  double initial_elastic_ = 0.0;
   double gravity_work_ = 0.0;
   double boundary_work_ = 0.0;
   double load_work_ = 0.0;
@@ -59,6 +69,8 @@ class EnergyBudget {
   double time_ = 0.0;
   double boundary_power_ = 0.0;  // at time_
   double load_power_ = 0.0;
+  double peak_ratio_ = 0.0;
+  double peak_ratio_time_ = 0.0;
 };
 
 }  // namespace duet

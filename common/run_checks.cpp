@@ -133,8 +133,8 @@ std::optional<std::string> energy_runaway(const RunCheckOptions& options, double
   char buffer[320];
   std::snprintf(buffer, sizeof buffer,
                 "kinetic energy %.4g J/m exceeds %g x the energy put in (%.4g J/m: gravity %.4g, "
-                "walls and rigid bodies %.4g, loads %.4g, initial %.4g): the method made energy "
-                "(checks.kinetic_energy_factor)",
+                "walls and rigid bodies %.4g, loads %.4g, initial kinetic %.4g, initial elastic "
+                "%.4g): the method made energy (checks.kinetic_energy_factor)",
                 kinetic, options.kinetic_energy_factor, budget.input(), budget.gravity_work(),
                 budget.boundary_work(), budget.load_work(), budget.initial_kinetic());
   return std::string(buffer);

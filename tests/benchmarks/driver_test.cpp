@@ -160,8 +160,8 @@ TEST(Driver, SolverNumericalFailureIsReportedWithItsReason) {
 }
 
 // The block carries 0.5 * 5 kg/m * (0.1 m/s)^2 = 0.025 J/m and nothing does work on it, so the
-// energy put in stays 0.025 J/m. The floor of the check is 1e-3 M (L / T)^2 =
-// 1e-3 * 5 * 13 = 0.065 J/m (domain diagonal sqrt(3^2 + 2^2) m, 1 s).
+// energy put in stays 0.025 J/m. The floor of the check is 1e-6 M (L / T)^2 =
+// 1e-6 * 5 * 13 = 6.5e-5 J/m (domain diagonal sqrt(3^2 + 2^2) m, 1 s).
 TEST(Driver, KineticEnergyBeyondTwiceTheEnergyPutInIsAFailure) {
   const Scene scene = load_scene_from_string(kScene, "moving-block.toml");
   RunOptions options{out_dir("energy"), false};
