@@ -50,8 +50,18 @@ double Parameters::require(std::string_view name, Range range, std::string_view 
                            std::string_view meaning) {
   const auto it = values_.find(std::string(name));
   if (it == values_.end()) {
-    throw InputError(key(name) + ": missing; " + std::string(meaning) + " is required (" +
-                     range.describe() + ", unit " + std::string(unit) + ")");
+    // A misspelt name is the likeliest cause: point at the given key that looks like it.
+    std::vector<std::string> unread;
+    for (const auto& [given, value] : values_) {
+      if (!read_.count(given)) unread.push_back(given);
+    }
+    const std::string near = closest_match(name, unread);
+    const std::string beside =
+        near.empty()
+            ? ""
+            : ", and '" + key(near) + "', which this model does not take, is probably it misspelt";
+    throw InputError(key(name) + ": missing" + beside + "; " + std::string(meaning) +
+                     " is required (" + range.describe() + ", unit " + std::string(unit) + ")");
   }
   read_.insert(std::string(name));
   const double* v = std::get_if<double>(&it->second);

@@ -250,7 +250,10 @@ void SphSolver::pair_loop(const Particles& particles) {
     PairSum* sum = pair_sum_.data() + t * n;
     std::fill(sum, sum + n, PairSum{});
     Vec2* wall_force = wall_force_scratch_.data() + t * n_walls;
-#pragma omp for schedule(dynamic, 256)
+    // Static chunks: each row's shares land in the same thread's buffer every run, so the sums
+    // of pass 2 (over the buffers in thread order) are bitwise reproducible; dynamic scheduling
+    // made two-thread runs differ at round-off from run to run.
+#pragma omp for schedule(static, 256)
     for (std::size_t k = 0; k < n; ++k) {
       const PairData& pi = work[k];
       const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
@@ -290,7 +293,7 @@ void SphSolver::pair_loop(const Particles& particles) {
 #pragma omp parallel if (parallel)
   {
     Vec2* wall_force = wall_force_scratch_.data() + omp_get_thread_num() * n_walls;
-#pragma omp for schedule(dynamic, 256) reduction(max : a_max2) nowait
+#pragma omp for schedule(static, 256) reduction(max : a_max2) nowait  // wall_force: as pass 1
     for (std::size_t k = 0; k < n; ++k) {
       const PairData& pi = work[k];
       const std::size_t i = order_[k];

@@ -72,7 +72,7 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
     team = omp_get_num_threads();
     PairSum* sum = pair_sum_.data() + t_id * n;
     std::fill(sum, sum + n, PairSum{});
-#pragma omp for schedule(dynamic, 256)
+#pragma omp for schedule(static, 256)  // reproducible shares, as in the force pass
     for (std::size_t k = 0; k < n; ++k) {
       const PairData& pi = work[k];
       PairSum s;
