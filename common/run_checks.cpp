@@ -136,7 +136,8 @@ std::optional<std::string> energy_runaway(const RunCheckOptions& options, double
                 "walls and rigid bodies %.4g, loads %.4g, initial kinetic %.4g, initial elastic "
                 "%.4g): the method made energy (checks.kinetic_energy_factor)",
                 kinetic, options.kinetic_energy_factor, budget.input(), budget.gravity_work(),
-                budget.boundary_work(), budget.load_work(), budget.initial_kinetic());
+                budget.boundary_work(), budget.load_work(), budget.initial_kinetic(),
+                budget.initial_elastic());
   return std::string(buffer);
 }
 
