@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "benchmarks/check_command.hpp"
 #include "benchmarks/commands.hpp"
 #include "benchmarks/element_command.hpp"
 #include "common/input_error.hpp"
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   duet::add_compare_command(app, exit_code);
   duet::add_stability_command(app, exit_code);
   duet::add_element_command(app, exit_code);
+  duet::add_check_command(app, exit_code);
   duet::add_demo_command(app, exit_code);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,167 @@
+#include "benchmarks/check_command.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "benchmarks/driver.hpp"
+#include "benchmarks/material_points.hpp"
+#include "benchmarks/methods.hpp"
+#include "benchmarks/reports.hpp"
+#include "benchmarks/scene_input.hpp"
+#include "common/geometry.hpp"
+#include "common/input_error.hpp"
+#include "common/lattice.hpp"
+#include "constitutive/model.hpp"
+
+namespace duet {
+
+namespace {
+
+struct CheckArgs {
+  std::string scene;
+  std::string method;
+  double spacing = 0.0;
+  std::vector<std::string> sets;
+  bool force = false;
+};
+
+/// Three significant digits: what an estimate deserves.
+std::string about(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+std::string with_commas(double value) {
+  std::string digits = std::to_string(static_cast<long long>(std::llround(value)));
+  for (int at = static_cast<int>(digits.size()) - 3; at > 0; at -= 3) digits.insert(at, ",");
+  return digits;
+}
+
+/// The largest P-wave speed sqrt((K + 4G/3) / rho) over the particles in their initial state
+/// (the models' moduli at the initial stress), or 0 when the scene is too large to sample here.
+double largest_wave_speed(const Scene& scene) {
+  if (estimated_particles(scene) > 2.0e6) return 0.0;
+  Particles particles = sample_bodies(scene);
+  initialise_material_points(scene, particles);
+  const auto models = build_models(scene);
+  double c = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const auto& model = *models[static_cast<std::size_t>(particles.material[i])];
+    const constitutive::ElasticModuli e = model.moduli(
+        particles.stress[i],
+        std::span<const double>(particles.internal.of(i), model.internal_variables().size()));
+    c = std::max(c, std::sqrt(std::max(e.bulk + 4.0 * e.shear / 3.0, 0.0) / particles.density[i]));
+  }
+  return c;
+}
+
+void print_scene(const Scene& scene, std::ostream& out) {
+  const double frames = std::floor(scene.time.end_time / scene.time.output_interval + 1e-9) + 1.0;
+  out << "scene " << scene.name << " (" << scene.path << "): valid\n"
+      << "  spacing " << format_number(scene.spacing) << " m, end time "
+      << format_number(scene.time.end_time) << " s, a frame every "
+      << format_number(scene.time.output_interval) << " s (" << with_commas(frames) << " frames)\n";
+  const bool huge = estimated_particles(scene) > 5.0e7;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const Body& body = scene.bodies[b];
+    const Material& m = scene.materials[static_cast<std::size_t>(body.material_index)];
+    out << "  body " << body.name << " (" << m.name << ", " << m.model << "): ";
+    if (huge) {
+      out << "about "
+          << format_number(std::abs(signed_area(body.outline)) / (scene.spacing * scene.spacing))
+          << " particles\n";
+    } else {
+      out << with_commas(static_cast<double>(count_body_samples(scene, b))) << " particles\n";
+    }
+  }
+  for (const Wall& w : scene.walls)
+    out << "  wall " << w.name << " (" << to_string(w.condition)
+        << (w.radial             ? ", radial"
+            : w.velocity.empty() ? ""
+                                 : ", moving")
+        << ")\n";
+  for (const RigidBody& rb : scene.rigid_bodies)
+    out << "  rigid body " << rb.name << " (" << to_string(rb.surface)
+        << (rb.velocity.empty() ? "" : ", moving") << ")\n";
+  for (const Measure& m : scene.measures)
+    out << "  measure " << m.name << " (" << to_string(m.kind) << ", " << to_string(m.at) << ")\n";
+  for (const Reference& r : scene.references)
+    out << "  scored: " << r.measure << " against " << format_number(r.value) << " (tolerance "
+        << format_number(100.0 * r.tolerance) << " %)\n";
+}
+
+/// One line per method: its step and steps (or increments) and memory.
+void print_method(const Scene& scene, const MethodInfo& method, double wave_speed,
+                  std::ostream& out) {
+  const RunEstimate e = estimate_run(scene, method);
+  std::ostringstream line;
+  line << "  " << method.name << ": ";
+  if (method.name == "sph") {
+    // sph/sph_solver.cpp: dt <= cfl h / sound_speed (and the acceleration limit).
+    const double h = scene.sph.h_over_dp * scene.spacing;
+    const double dt = scene.sph.cfl * h / scene.sph.sound_speed;
+    line << "time step at most " << about(dt) << " s (cfl " << format_number(scene.sph.cfl)
+         << " x h / sound speed " << format_number(scene.sph.sound_speed) << " m/s), at least "
+         << with_commas(std::ceil(scene.time.end_time / dt)) << " steps";
+  } else if (method.name == "espfem" && wave_speed > 0.0) {
+    // spfem/explicit_solver.cpp: dt = safety x cell size / P-wave speed (cell size about dp).
+    const double dt = scene.spfem.time_step_safety * scene.spacing / wave_speed;
+    line << "time step about " << about(dt) << " s (safety "
+         << format_number(scene.spfem.time_step_safety) << " x dp / P-wave speed "
+         << about(wave_speed) << " m/s), about " << with_commas(std::ceil(scene.time.end_time / dt))
+         << " steps (slivers of the mesh shorten it)";
+  } else if (method.name == "ispfem") {
+    const double increment = scene.spfem_implicit.increment > 0.0
+                                 ? scene.spfem_implicit.increment
+                                 : scene.time.end_time / scene.spfem_implicit.load_steps;
+    line << "increments of " << format_number(increment) << " s, "
+         << with_commas(std::ceil(scene.time.end_time / increment - 1e-9))
+         << " of them (more where Newton cuts them)";
+  }
+  line << "; memory about " << about(e.bytes / 1e9) << " GB of this machine's "
+       << about(e.machine_bytes / 1e9) << " GB";
+  out << line.str() << '\n';
+}
+
+}  // namespace
+
+void add_check_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<CheckArgs>();
+  CLI::App* cmd =
+      app.add_subcommand("check", "validate a scene and print what a run would be; run nothing");
+  cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
+  cmd->add_option("--method", args->method, "sph | espfem | ispfem (default: every one)");
+  cmd->add_option("--spacing", args->spacing, "particle spacing dp (m), overrides the scene's");
+  cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
+  cmd->add_flag("--force", args->force, "do not refuse a run estimated beyond the memory");
+  cmd->callback([args, cmd, &exit_code] {
+    std::vector<std::string> overrides = args->sets;
+    if (cmd->count("--spacing") > 0) {
+      if (!(args->spacing > 0.0) || !std::isfinite(args->spacing)) {
+        throw InputError("--spacing " + format_number(args->spacing) +
+                         ": expected a particle spacing (m) > 0");
+      }
+      overrides.push_back("spacing=" + format_number(args->spacing));
+    }
+    const Scene scene = load_scene_checked(args->scene, overrides);
+    std::vector<const MethodInfo*> methods;
+    if (args->method.empty()) {
+      for (const auto& name : builtin_methods().names())
+        methods.push_back(&builtin_methods().find(name));
+    } else {
+      methods.push_back(&builtin_methods().find(args->method));
+    }
+    for (const MethodInfo* m : methods) refuse_if_too_large(scene, *m, args->force);
+    print_scene(scene, std::cout);
+    const double wave_speed = largest_wave_speed(scene);
+    for (const MethodInfo* m : methods) print_method(scene, *m, wave_speed, std::cout);
+    exit_code = 0;
+  });
+}
+
+}  // namespace duet
