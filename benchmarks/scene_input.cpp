@@ -1,5 +1,9 @@
 #include "benchmarks/scene_input.hpp"
 
+#include <iostream>
+#include <set>
+#include <string>
+
 #include "constitutive/registry.hpp"
 
 namespace duet {
@@ -13,13 +17,34 @@ MaterialCheck model_material_check() {
   };
 }
 
+namespace {
+
+/// Legal values in a likely wrong unit (phi = 0.5, E = 10): said on the terminal, not refused.
+/// Once per message and process: compare and stability load a scene once per run.
+void warn_implausible(const Scene& scene) {
+  static std::set<std::string> said;
+  for (const Material& m : scene.materials) {
+    for (const std::string& w :
+         constitutive::implausible_parameters(m.resolved, m.density, "material." + m.name)) {
+      const std::string line = "duet: warning: " + scene.path + ": " + w;
+      if (said.insert(line).second) std::cerr << line << '\n';
+    }
+  }
+}
+
+}  // namespace
+
 Scene load_scene_checked(const std::string& path, const std::vector<std::string>& overrides) {
-  return load_scene(path, overrides, model_material_check());
+  Scene scene = load_scene(path, overrides, model_material_check());
+  warn_implausible(scene);
+  return scene;
 }
 
 Scene load_scene_checked_from_string(const std::string& toml_text, const std::string& path,
                                      const std::vector<std::string>& overrides) {
-  return load_scene_from_string(toml_text, path, overrides, model_material_check());
+  Scene scene = load_scene_from_string(toml_text, path, overrides, model_material_check());
+  warn_implausible(scene);
+  return scene;
 }
 
 }  // namespace duet

@@ -42,6 +42,14 @@ void register_builtin_models(ModelRegistry& registry);
 /// The registry with every built-in model.
 const ModelRegistry& builtin_models();
 
+/// Values that are legal but almost surely in the wrong unit, one message each (empty when none):
+/// an angle (phi, psi) in (0, 1.6) looks like radians; a modulus (E, Ei) below 10 kPa like MPa or
+/// kPa; a strength (c, cu) in (0, 100) Pa like kPa; a density below 100 kg/m^3 like t/m^3.
+/// `context` prefixes each (e.g. "material.sand").
+std::vector<std::string> implausible_parameters(
+    const std::map<std::string, ParameterValue>& resolved, double density,
+    const std::string& context);
+
 /// Convenience: find by name, build from values, check unknown keys. `context` prefixes messages.
 std::unique_ptr<Model> make_model(const std::string& name,
                                   std::map<std::string, ParameterValue> values,
