@@ -149,9 +149,10 @@ TEST(SceneLoader, StiffnessStabilisationDefaultsToOffAndANegativeValueIsRefused)
 TEST(SceneLoader, ImplicitOptionsOutOfRangeAreRefusedNamingTheKey) {
   // [spfem.implicit]: a residual tolerance and a correction tolerance must be positive, an
   // increment non-negative, at least one load step and one iteration
-  for (const char* bad : {"spfem.implicit.tolerance=-1e-8", "spfem.implicit.tolerance=0",
-                          "spfem.implicit.displacement_tolerance=-1", "spfem.implicit.load_steps=0",
-                          "spfem.implicit.increment=-0.1", "spfem.implicit.max_iterations=0"}) {
+  for (const std::string bad :
+       {"spfem.implicit.tolerance=-1e-8", "spfem.implicit.tolerance=0",
+        "spfem.implicit.displacement_tolerance=-1", "spfem.implicit.load_steps=0",
+        "spfem.implicit.increment=-0.1", "spfem.implicit.max_iterations=0"}) {
     const std::string message = refusal(kScene, {bad});
     const std::string key = bad.substr(0, bad.find('='));
     EXPECT_NE(message.find(key), std::string::npos) << bad << ": " << message;
