@@ -119,6 +119,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   long steps = 0;
   std::optional<Failure> failure;
   int interrupted_by = 0;  // the signal that ended the run, or 0
+  bool output_failed = false;
   std::vector<Vec2> previous_position = particles.position;
 
   {
@@ -175,20 +176,31 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     }
     if (time >= next_output) {
       ScopedTimer t(output_timers, Phase::output);
-      writer.write_frame(time, particles);
-      writer.write_series(measures.names(), measures.columns());
+      try {
+        writer.write_frame(time, particles);
+        writer.write_series(measures.names(), measures.columns());
+      } catch (const std::exception& e) {
+        // A full disk or a quota: the run ends, the frames written before stay readable.
+        output_failed = true;
+        failure = Failure{std::string("writing the output failed: ") + e.what(), time};
+        break;
+      }
       next_output += output_interval;
     }
     if (progress) progress->update(time, steps);
     if ((interrupted_by = pending_interrupt()) != 0) break;
   }
-  // The last state (or the state at failure) is always a frame.
-  {
-    ScopedTimer t(output_timers, Phase::output);
-    writer.write_frame(time, particles);
-  }
+  // The last state (or the state at failure) is always a frame, unless writing is what failed.
   if (!failure) measures.sample(time, particles, solver->reactions());
-  writer.write_series(measures.names(), measures.columns());
+  if (!output_failed) {
+    ScopedTimer t(output_timers, Phase::output);
+    try {
+      writer.write_frame(time, particles);
+      writer.write_series(measures.names(), measures.columns());
+    } catch (const std::exception& e) {
+      failure = Failure{std::string("writing the output failed: ") + e.what(), time};
+    }
+  }
   const std::string status = failure ? "failed" : interrupted_by ? "interrupted" : "completed";
   if (interrupted_by) {
     failure = Failure{"interrupted by signal " + std::to_string(interrupted_by), time};

@@ -8,6 +8,7 @@
 #include "benchmarks/check_command.hpp"
 #include "benchmarks/commands.hpp"
 #include "benchmarks/element_command.hpp"
+#include "common/h5_writer.hpp"
 #include "common/input_error.hpp"
 #include "common/interrupt.hpp"
 
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
       "duet: run one geomechanics scene through SPH and SPFEM and score accuracy against cost"};
   app.require_subcommand(1);
   int exit_code = 0;
+  duet::keep_hdf5_out_of_exit();
   duet::install_interrupt_handlers();
   duet::add_run_command(app, exit_code);
   duet::add_compare_command(app, exit_code);

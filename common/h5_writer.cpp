@@ -557,4 +557,8 @@ RunMetadata read_metadata(const std::string& path) {
   return m;
 }
 
+void keep_hdf5_out_of_exit() {
+  H5dont_atexit();
+}
+
 }  // namespace duet

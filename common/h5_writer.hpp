@@ -67,6 +67,12 @@ class RunWriter {
   std::vector<XdmfFrame> frames_;
 };
 
+/// Call first in main, before any other HDF5 call: keeps the HDF5 library from closing files at
+/// exit. After a write has failed (a full disk), HDF5 1.10's own exit-time close of that file
+/// crashes (SIGSEGV in H5F__close_cb) after metrics.json was written; the writer closes its files
+/// itself, so nothing is lost.
+void keep_hdf5_out_of_exit();
+
 /// One frame read back from run.h5 (tests, post-processing).
 struct Frame {
   double time = 0.0;
