@@ -8,6 +8,7 @@
 #include "benchmarks/check_command.hpp"
 #include "benchmarks/commands.hpp"
 #include "benchmarks/element_command.hpp"
+#include "benchmarks/git_commit.hpp"
 #include "common/h5_writer.hpp"
 #include "common/input_error.hpp"
 #include "common/interrupt.hpp"
@@ -15,6 +16,8 @@
 int main(int argc, char** argv) {
   CLI::App app{
       "duet: run one geomechanics scene through SPH and SPFEM and score accuracy against cost"};
+  app.set_version_flag(
+      "--version", std::string("duet ") + DUET_VERSION + " (commit " + duet::source_commit() + ")");
   app.require_subcommand(1);
   int exit_code = 0;
   duet::keep_hdf5_out_of_exit();
