@@ -49,6 +49,27 @@ TEST(MaterialPoints, IsotropicInitialStressIsMinusThePressureOnEveryParticle) {
   }
 }
 
+TEST(MaterialPoints, StoredElasticEnergyOfAnIsotropicStressIsVolumeTimesPSquaredOverTwoK) {
+  const Scene scene =
+      load_scene_from_string(block_scene("kind = \"isotropic\"\npressure = 1.0e4\n"), "block.toml");
+  Particles particles = sample_bodies(scene);
+  EXPECT_EQ(stored_elastic_energy(scene, particles), 0.0);  // no stress yet
+  initialise_material_points(scene, particles);
+  // K = E / (3 (1 - 2 nu)) = 1e7 / 1.2; no deviator; V = 0.1 x 0.05 m^2.
+  const double bulk = 1.0e7 / 1.2;
+  EXPECT_NEAR(stored_elastic_energy(scene, particles), 0.005 * 1.0e8 / (2.0 * bulk), 1e-15);
+}
+
+TEST(MaterialPoints, StoredElasticEnergyOfAUniaxialStressIsSigmaSquaredOverTwoE) {
+  // sigma = -q e_y e_y: p^2 / 2K + s:s / 4G = q^2 / 18K + q^2 / 6G = q^2 / 2E (uniaxial stress).
+  const Scene scene = load_scene_from_string(block_scene("kind = \"none\"\n"), "block.toml");
+  Particles particles = sample_bodies(scene);
+  initialise_material_points(scene, particles);
+  const double q = 2.0e4;
+  for (Mat3& s : particles.stress) s(1, 1) = -q;
+  EXPECT_NEAR(stored_elastic_energy(scene, particles), 0.005 * q * q / (2.0 * 1.0e7), 1e-15);
+}
+
 TEST(MaterialPoints, GeostaticStressIsTheOverburdenWithK0Sideways) {
   // Arrange
   const Scene scene =
