@@ -14,6 +14,7 @@
 #include "benchmarks/git_commit.hpp"
 #include "benchmarks/material_points.hpp"
 #include "benchmarks/reports.hpp"
+#include "benchmarks/run_warnings.hpp"
 #include "common/energy_budget.hpp"
 #include "common/h5_writer.hpp"
 #include "common/input_error.hpp"
@@ -228,6 +229,15 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   metrics["diagnostics"] = solver->diagnostics();
   metrics["kinetic_energy"] = energy.to_json();
   metrics["energy_input"] = budget.to_json();
+  const std::vector<std::string> warnings = status == "completed"
+                                                ? run_warnings(scene, method, energy, budget, time)
+                                                : std::vector<std::string>{};
+  Json warning_list = Json::array();
+  for (const std::string& w : warnings) {
+    warning_list.push_back(w);
+    std::cerr << "duet: warning: " << w << '\n';
+  }
+  metrics["warnings"] = warning_list;
   metrics["commit"] = source_commit();
   metrics["scene_file"] = scene.path;
   write_json(options.out_dir + "/metrics.json", metrics);

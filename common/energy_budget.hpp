@@ -49,6 +49,7 @@ class EnergyBudget {
   /// Keeps the largest kinetic / max(input, floor) seen: how close a run came to the check.
   void observe(double kinetic);
   double peak_ratio() const { return peak_ratio_; }
+  double peak_ratio_time() const { return peak_ratio_time_; }
 
   Json to_json() const;
 

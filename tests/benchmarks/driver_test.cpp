@@ -186,6 +186,10 @@ TEST(Driver, KineticEnergyWithinTwiceTheEnergyPutInCompletes) {
   const RunSummary summary =
       run_scene(scene, ballistic({.boost_at_step = 40, .boost = 1.4}), options);
   EXPECT_EQ(summary.status, "completed") << summary.failure_reason;
+  // ... and is warned of: 1.96 is above the warning's 1.2.
+  EXPECT_NE(read_text(options.out_dir + "/metrics.json")
+                .find("the kinetic energy reached 1.96 times the energy put in"),
+            std::string::npos);
 }
 
 TEST(Driver, BodyLeavingAFixedNoSlipWallIsAFailure) {
@@ -213,6 +217,30 @@ TEST(Driver, LiftOffCheckTurnedOffLetsTheBodyLeave) {
   const Scene scene = load_scene_from_string(text, "moving-block.toml");
   RunOptions options{out_dir("lift-off-off"), false};
   EXPECT_EQ(run_scene(scene, ballistic({}), options).status, "completed");
+}
+
+TEST(Driver, DepositStillMovingAtTheEndIsWarnedOf) {
+  // Under gravity, nothing driven, the block still sliding at 0.1 m/s at the end: its kinetic
+  // energy at the end is its peak.
+  std::string text = kScene;
+  text.replace(text.find("spacing = 0.01"), 14, "spacing = 0.01\ngravity = [0.0, -10.0]");
+  text += "[wall.floor]\npoints = [[-0.5, 0.0], [1.5, 0.0]]\ncondition = \"free-slip\"\n";
+  const Scene scene = load_scene_from_string(text, "moving-block.toml");
+  RunOptions options{out_dir("not-at-rest"), false};
+  const RunSummary summary = run_scene(scene, ballistic({}), options);
+  ASSERT_EQ(summary.status, "completed") << summary.failure_reason;
+  const std::string metrics = read_text(options.out_dir + "/metrics.json");
+  EXPECT_NE(metrics.find("not at rest: the kinetic energy at t = 1 s is 1 of its peak"),
+            std::string::npos)
+      << metrics;
+}
+
+TEST(Driver, RunWithoutGravityOrStillAtTheEndHasNoWarning) {
+  const Scene scene = load_scene_from_string(kScene, "moving-block.toml");  // no gravity
+  RunOptions options{out_dir("no-warning"), false};
+  ASSERT_EQ(run_scene(scene, ballistic({}), options).status, "completed");
+  EXPECT_NE(read_text(options.out_dir + "/metrics.json").find("\"warnings\": []"),
+            std::string::npos);
 }
 
 TEST(Driver, OutputFolderThatIsAFileOrCannotBeCreatedIsBadInput) {

@@ -1,0 +1,24 @@
+#pragma once
+// What a finished run's own figures say that a user must not miss, each with what to try: said on
+// the terminal at the end of the run and listed under `warnings` in metrics.json.
+
+#include <string>
+#include <vector>
+
+#include "common/energy_budget.hpp"
+#include "common/kinetic_energy.hpp"
+#include "common/scene.hpp"
+#include "common/solver.hpp"
+
+namespace duet {
+
+/// - a deposit not at rest: a dynamic method, gravity, nothing driven at the end (every wall and
+///   rigid body still, no load), kinetic energy at the end above 1e-3 of its peak and 1e-4 of the
+///   energy put in;
+/// - close to the energy check: the kinetic energy reached more than 1.2 times the energy put in
+///   (the check fails a run at kinetic_energy_factor, 2 by default).
+std::vector<std::string> run_warnings(const Scene& scene, const MethodInfo& method,
+                                      const KineticEnergyRecord& energy, const EnergyBudget& budget,
+                                      double end_time);
+
+}  // namespace duet
