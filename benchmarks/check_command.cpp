@@ -141,13 +141,7 @@ void add_check_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--force", args->force, "do not refuse a run estimated beyond the memory");
   cmd->callback([args, cmd, &exit_code] {
     std::vector<std::string> overrides = args->sets;
-    if (cmd->count("--spacing") > 0) {
-      if (!(args->spacing > 0.0) || !std::isfinite(args->spacing)) {
-        throw InputError("--spacing " + format_number(args->spacing) +
-                         ": expected a particle spacing (m) > 0");
-      }
-      overrides.push_back("spacing=" + format_number(args->spacing));
-    }
+    if (cmd->count("--spacing") > 0) overrides.push_back(spacing_override(args->spacing));
     const Scene scene = load_scene_checked(args->scene, overrides);
     std::vector<const MethodInfo*> methods;
     if (args->method.empty()) {

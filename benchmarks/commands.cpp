@@ -1,6 +1,5 @@
 #include "benchmarks/commands.hpp"
 
-#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -93,13 +92,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
                 "run even when the estimated memory exceeds the machine's (refused otherwise)");
   cmd->callback([args, cmd, &exit_code] {
     std::vector<std::string> overrides = args->sets;
-    if (cmd->count("--spacing") > 0) {
-      if (!(args->spacing > 0.0) || !std::isfinite(args->spacing)) {
-        throw InputError("--spacing " + format_number(args->spacing) +
-                         ": expected a particle spacing (m) > 0");
-      }
-      overrides = with_spacing(overrides, args->spacing);
-    }
+    if (cmd->count("--spacing") > 0) overrides.push_back(spacing_override(args->spacing));
     const Scene scene = load_scene_checked(args->scene, overrides);
     const MethodInfo& method = builtin_methods().find(args->method);
     refuse_if_too_large(scene, method, args->force);

@@ -1,12 +1,23 @@
 #include "benchmarks/scene_input.hpp"
 
+#include <cmath>
 #include <iostream>
 #include <set>
 #include <string>
 
+#include "benchmarks/reports.hpp"
+#include "common/input_error.hpp"
 #include "constitutive/registry.hpp"
 
 namespace duet {
+
+std::string spacing_override(double spacing) {
+  if (!(spacing > 0.0) || !std::isfinite(spacing)) {
+    throw InputError("--spacing " + format_number(spacing) +
+                     ": expected a particle spacing (m) > 0");
+  }
+  return "spacing=" + format_number(spacing);
+}
 
 MaterialCheck model_material_check() {
   return [](const std::string& model, const std::map<std::string, ParameterValue>& parameters,

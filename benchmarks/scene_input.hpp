@@ -13,6 +13,10 @@ namespace duet {
 /// The MaterialCheck that builds each material's model through constitutive::make_model.
 MaterialCheck model_material_check();
 
+/// The override `--spacing DP` stands for ("spacing=DP"); throws InputError naming the option
+/// unless DP is a positive finite number (the loader would name `--set spacing=` instead).
+std::string spacing_override(double spacing);
+
 Scene load_scene_checked(const std::string& path, const std::vector<std::string>& overrides = {});
 
 Scene load_scene_checked_from_string(const std::string& toml_text, const std::string& path,
