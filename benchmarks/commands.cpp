@@ -50,7 +50,7 @@ std::vector<double> parse_spacings(const std::string& text) {
 }
 
 std::vector<std::string> with_spacing(std::vector<std::string> overrides, double spacing) {
-  overrides.push_back("spacing=" + format_number(spacing));
+  overrides.push_back(spacing_override(spacing));
   return overrides;
 }
 
