@@ -1,7 +1,6 @@
 // SIGINT / SIGTERM on a running `duet run`: the step in progress is finished, the last frame and
 // metrics.json are written with status "interrupted" and the signal, and the exit status is
 // 128 + signal; a second signal ends the process at once.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -9,44 +8,25 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 
 #include "common/h5_writer.hpp"
+#include "tests/benchmarks/child_run.hpp"
 
 namespace duet {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 /// Starts `duet run` on the sand collapse (16 s at dp 5 mm through SPH), waits until its first
 /// frame is on disk (handlers installed, stepping), sends each of `signals`, and returns the
 /// wait status.
 int interrupt_run(const fs::path& out, const std::vector<int>& signals) {
   fs::remove_all(out);
-  const std::string scene = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
-  const pid_t child = fork();
-  if (child == 0) {
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, 1);
-    dup2(null, 2);
-    execl(DUET_BINARY, DUET_BINARY, "run", scene.c_str(), "--method", "sph", "--spacing", "0.005",
-          "--quiet", "--out", out.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(out / "run.xdmf") && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  const pid_t child =
+      test::start_collapse_run({"--spacing", "0.005", "--quiet", "--out", out.string()});
+  test::wait_for_first_frame(out);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   for (int s : signals) kill(child, s);
   int status = 0;
@@ -59,7 +39,7 @@ TEST(Interrupt, SigintWritesTheFrameAndMetricsAndExits130) {
   const int status = interrupt_run(out, {SIGINT});
   ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status);
   EXPECT_EQ(WEXITSTATUS(status), 130);
-  const std::string metrics = read_text(out / "metrics.json");
+  const std::string metrics = test::read_text(out / "metrics.json");
   EXPECT_NE(metrics.find("\"status\": \"interrupted\""), std::string::npos) << metrics;
   EXPECT_NE(metrics.find("interrupted by signal 2"), std::string::npos) << metrics;
   EXPECT_NE(metrics.find("\"signal\": 2"), std::string::npos) << metrics;
@@ -72,7 +52,8 @@ TEST(Interrupt, SigtermExits143) {
   const int status = interrupt_run(out, {SIGTERM});
   ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status);
   EXPECT_EQ(WEXITSTATUS(status), 143);
-  EXPECT_NE(read_text(out / "metrics.json").find("interrupted by signal 15"), std::string::npos);
+  EXPECT_NE(test::read_text(out / "metrics.json").find("interrupted by signal 15"),
+            std::string::npos);
 }
 
 TEST(Interrupt, SecondSignalEndsAtOnce) {

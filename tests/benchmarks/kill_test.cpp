@@ -2,7 +2,6 @@
 // before the kill (the writer flushes run.h5 after each frame and then replaces run.xdmf by a
 // rename), opens and reads whole. The run writes a frame every few steps so that kills land
 // inside frame writes as often as between them.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -10,30 +9,16 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 
 #include "common/h5_writer.hpp"
+#include "tests/benchmarks/child_run.hpp"
 
 namespace duet {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::size_t frames_listed(const fs::path& xdmf) {
-  std::ifstream in(xdmf);
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string s = text.str();
-  std::size_t count = 0;
-  for (std::size_t at = s.find("<Grid Name=\"frame_"); at != std::string::npos;
-       at = s.find("<Grid Name=\"frame_", at + 1)) {
-    ++count;
-  }
-  return count;
-}
 
 class Kill : public testing::TestWithParam<int> {};
 
@@ -41,28 +26,17 @@ TEST_P(Kill, EveryFrameListedBeforeTheKillReadsWhole) {
   const int delay_ms = GetParam();
   const fs::path out = fs::temp_directory_path() / ("duet-kill-" + std::to_string(delay_ms));
   fs::remove_all(out);
-  const std::string scene = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
-  const pid_t child = fork();
-  if (child == 0) {
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, 1);
-    dup2(null, 2);
-    execl(DUET_BINARY, DUET_BINARY, "run", scene.c_str(), "--method", "sph", "--spacing", "0.003",
-          "--set", "time.output_interval=0.0002", "--quiet", "--out", out.c_str(),
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(out / "run.xdmf") && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  const pid_t child =
+      test::start_collapse_run({"--spacing", "0.003", "--set", "time.output_interval=0.0002",
+                                "--quiet", "--out", out.string()});
+  test::wait_for_first_frame(out);
   std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
   kill(child, SIGKILL);
   int status = 0;
   waitpid(child, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status));
 
-  const std::size_t listed = frames_listed(out / "run.xdmf");
+  const std::size_t listed = test::frames_listed(out / "run.xdmf");
   ASSERT_GE(listed, 1u);
   const std::string h5 = (out / "run.h5").string();
   ASSERT_GE(count_frames(h5), listed);  // a frame being written when killed may be there too

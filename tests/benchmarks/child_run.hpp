@@ -1,0 +1,69 @@
+#pragma once
+// For the tests that run the duet program as a child process and look at what it left behind
+// (signals, kills, output faults): start it, wait for its first frame, read its files.
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace duet::test {
+
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// `duet run` on the sand collapse through SPH with `arguments` after the scene, stdout and stderr
+/// to /dev/null; `in_child` runs in the child before exec (resource limits, signal dispositions).
+inline pid_t start_collapse_run(const std::vector<std::string>& arguments,
+                                const std::function<void()>& in_child = {}) {
+  const std::string scene = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
+  std::vector<std::string> words = {DUET_BINARY, "run", scene, "--method", "sph"};
+  words.insert(words.end(), arguments.begin(), arguments.end());
+  const pid_t child = fork();
+  if (child == 0) {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    if (in_child) in_child();
+    std::vector<char*> argv;
+    for (std::string& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    execv(DUET_BINARY, argv.data());
+    _exit(127);
+  }
+  return child;
+}
+
+/// Waits (at most a minute) until the run in `out` has written its first frame: its signal
+/// handlers are installed and it is stepping.
+inline void wait_for_first_frame(const std::filesystem::path& out) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!std::filesystem::exists(out / "run.xdmf") &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
+/// Frames run.xdmf lists: those completed (flushed) before it was last replaced.
+inline std::size_t frames_listed(const std::filesystem::path& xdmf) {
+  const std::string s = read_text(xdmf);
+  std::size_t count = 0;
+  for (auto at = s.find("<Grid Name=\"frame_"); at != std::string::npos;
+       at = s.find("<Grid Name=\"frame_", at + 1)) {
+    ++count;
+  }
+  return count;
+}
+
+}  // namespace duet::test
