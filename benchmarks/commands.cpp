@@ -82,6 +82,9 @@ int run_exit_status(const RunSummary& summary) {
 void add_run_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand("run", "run one scene through one method");
+  cmd->footer(
+      "Scene keys: duet keys [SECTION]; soil models and their parameters: duet models [MODEL]; "
+      "methods and their options: duet methods. Validate without running: duet check SCENE.");
   cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
   cmd->add_option("--method", args->method, "sph | espfem | ispfem")->required();
   cmd->add_option("--spacing", args->spacing, "particle spacing dp (m), overrides the scene's");

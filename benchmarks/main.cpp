@@ -9,6 +9,7 @@
 #include "benchmarks/commands.hpp"
 #include "benchmarks/element_command.hpp"
 #include "benchmarks/git_commit.hpp"
+#include "benchmarks/listing_commands.hpp"
 #include "common/h5_writer.hpp"
 #include "common/input_error.hpp"
 #include "common/interrupt.hpp"
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   duet::add_element_command(app, exit_code);
   duet::add_check_command(app, exit_code);
   duet::add_demo_command(app, exit_code);
+  duet::add_listing_commands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -11,6 +11,7 @@
 
 #include "common/geometry.hpp"
 #include "common/input_error.hpp"
+#include "common/scene_keys.hpp"
 #include "common/scene_schema.hpp"
 #include "common/scene_validation.hpp"
 #include "common/suggest.hpp"
@@ -19,49 +20,24 @@ namespace duet {
 
 namespace {
 
-// The schema: keys of every table. Later issues add keys here (and read them below).
-const std::vector<std::string> kRootKeys = {
-    "name",   "description",    "spacing",   "gravity", "confined", "time",
-    "domain", "initial_stress", "material",  "body",    "wall",     "rigid_body",
-    "load",   "measure",        "reference", "sph",     "spfem",    "strength_reduction",
-    "checks"};
+// The schema: keys of every table, from common/scene_keys.cpp (what `duet keys` prints).
+const std::vector<std::string> kRootKeys = scene_keys_of("");
 const std::vector<std::string> kCollections = {"material", "body",    "wall",     "rigid_body",
                                                "load",     "measure", "reference"};
-const std::vector<std::string> kTimeKeys = {"end_time", "output_interval"};
-const std::vector<std::string> kDomainKeys = {"min", "max", "padding"};
-const std::vector<std::string> kInitialStressKeys = {"kind", "pressure", "K0", "damping", "time"};
-const std::vector<std::string> kBodyKeys = {"material", "shape",    "min",
-                                            "max",      "vertices", "initial_velocity"};
-const std::vector<std::string> kWallKeys = {"points", "condition", "velocity", "centre",
-                                            "radial_velocity"};
-const std::vector<std::string> kRigidKeys = {"vertices", "velocity", "surface", "friction"};
-const std::vector<std::string> kLoadKeys = {"body", "min", "max", "force"};
-const std::vector<std::string> kMeasureKeys = {"kind", "target",        "component", "at",
-                                               "time", "min_thickness", "divide_by", "scale"};
-const std::vector<std::string> kStrengthReductionKeys = {"factor", "rule"};
-const std::vector<std::string> kCheckKeys = {"kinetic_energy_factor", "lift_off_fraction",
-                                             "lift_off_distance"};
-const std::vector<std::string> kReferenceKeys = {"value", "source", "tolerance"};
-const std::vector<std::string> kSphKeys = {
-    "kernel",     "h_over_dp",   "alpha",          "beta",         "artificial_stress",
-    "cfl",        "sound_speed", "wall_treatment", "dummy_layers", "wall_stress",
-    "integrator", "continuity",  "dummy_velocity"};
-const std::vector<std::string> kSpfemKeys = {"alpha_factor",
-                                             "time_step_safety",
-                                             "damping",
-                                             "local_damping",
-                                             "stabilisation",
-                                             "remesh",
-                                             "remesh_angle",
-                                             "boundary_layer",
-                                             "time_step",
-                                             "implicit",
-                                             "stress_increment_limit",
-                                             "stiffness_stabilisation",
-                                             "remesh_angle_fraction"};
-const std::vector<std::string> kImplicitKeys = {
-    "tolerance", "displacement_tolerance", "max_iterations", "load_steps",       "increment",
-    "adaptive",  "easy_iterations",        "max_step_cuts",  "active_set_passes"};
+const std::vector<std::string> kTimeKeys = scene_keys_of("time");
+const std::vector<std::string> kDomainKeys = scene_keys_of("domain");
+const std::vector<std::string> kInitialStressKeys = scene_keys_of("initial_stress");
+const std::vector<std::string> kBodyKeys = scene_keys_of("body.<name>");
+const std::vector<std::string> kWallKeys = scene_keys_of("wall.<name>");
+const std::vector<std::string> kRigidKeys = scene_keys_of("rigid_body.<name>");
+const std::vector<std::string> kLoadKeys = scene_keys_of("load.<name>");
+const std::vector<std::string> kMeasureKeys = scene_keys_of("measure.<name>");
+const std::vector<std::string> kStrengthReductionKeys = scene_keys_of("strength_reduction");
+const std::vector<std::string> kCheckKeys = scene_keys_of("checks");
+const std::vector<std::string> kReferenceKeys = scene_keys_of("reference.<measure>");
+const std::vector<std::string> kSphKeys = scene_keys_of("sph");
+const std::vector<std::string> kSpfemKeys = scene_keys_of("spfem");
+const std::vector<std::string> kImplicitKeys = scene_keys_of("spfem.implicit");
 
 std::string trim(std::string s) {
   const auto not_space = [](unsigned char c) { return !std::isspace(c); };

@@ -68,6 +68,8 @@ struct MethodInfo {
   // Peak memory per particle, measured (benchmarks/RESULTS.md "Reliability"): what `duet run`
   // refuses a scene by before any work when it would not fit in the machine's memory.
   double bytes_per_particle = 2048.0;
+  // The scene tables whose keys it reads (`duet methods`, `duet keys SECTION`).
+  std::vector<std::string> option_sections;
 };
 
 class MethodRegistry {

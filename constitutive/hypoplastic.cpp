@@ -288,7 +288,8 @@ void register_hypoplastic(ModelRegistry& registry) {
                 [](Parameters& p) -> std::unique_ptr<Model> {
                   return std::make_unique<Hypoplastic>(HypoplasticParameters::read(p));
                 },
-                {{"Ei", 20e6}, {"nu", 0.2}, {"phi", 30.0}, {"psi", 1.0}, {"c", 0.0}}});
+                {{"Ei", 20e6}, {"nu", 0.2}, {"phi", 30.0}, {"psi", 1.0}, {"c", 0.0}},
+                {{{"c1", -55.6}, {"c2", -171.2}, {"c3", -540.9}, {"c4", -170.9}, {"c", 0.0}}}});
 }
 
 }  // namespace duet::constitutive

@@ -46,8 +46,17 @@ bool Parameters::has(std::string_view name) const {
   return values_.find(std::string(name)) != values_.end();
 }
 
+void Parameters::note(ParameterSpec spec) {
+  for (const ParameterSpec& s : specs_) {
+    if (s.name == spec.name) return;
+  }
+  specs_.push_back(std::move(spec));
+}
+
 double Parameters::require(std::string_view name, Range range, std::string_view unit,
                            std::string_view meaning) {
+  note({std::string(name), "required", range.describe(), std::string(unit), "",
+        std::string(meaning)});
   const auto it = values_.find(std::string(name));
   if (it == values_.end()) {
     // A misspelt name is the likeliest cause: point at the given key that looks like it.
@@ -79,6 +88,8 @@ double Parameters::require(std::string_view name, Range range, std::string_view 
 
 double Parameters::optional(std::string_view name, double fallback, Range range,
                             std::string_view unit, std::string_view meaning) {
+  note({std::string(name), "optional", range.describe(), std::string(unit), format_number(fallback),
+        std::string(meaning)});
   if (!has(name)) {
     resolved_[std::string(name)] = fallback;
     return fallback;
@@ -88,6 +99,9 @@ double Parameters::optional(std::string_view name, double fallback, Range range,
 
 std::string Parameters::choice(std::string_view name, const std::vector<std::string>& choices,
                                std::string_view fallback, std::string_view meaning) {
+  std::string words;
+  for (const auto& c : choices) words += (words.empty() ? "" : " | ") + c;
+  note({std::string(name), "choice", words, "", std::string(fallback), std::string(meaning)});
   const auto it = values_.find(std::string(name));
   if (it == values_.end()) {
     resolved_[std::string(name)] = std::string(fallback);
@@ -107,6 +121,7 @@ std::string Parameters::choice(std::string_view name, const std::vector<std::str
 }
 
 void Parameters::record(std::string_view name, double value) {
+  note({std::string(name), "derived", "", "", "", "derived from the others (not given in this form)"});
   resolved_[std::string(name)] = value;
 }
 

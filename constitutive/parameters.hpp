@@ -36,6 +36,16 @@ struct Range {
   std::string describe() const;  // "[0, 0.5)", "> 0", ...
 };
 
+/// One parameter as a model's constructor read it: what `duet models` lists.
+struct ParameterSpec {
+  std::string name;
+  std::string kind;   // "required", "optional", "choice", "derived"
+  std::string range;  // Range::describe(), or the choices "a | b"
+  std::string unit;
+  std::string fallback;  // the default of an optional parameter or a choice, else ""
+  std::string meaning;
+};
+
 /// Reads named parameters for one model. `context` prefixes every message ("material.sand").
 /// Every value read (default included) is recorded in resolved(); finish() refuses keys that no
 /// one read, with a did-you-mean.
@@ -62,6 +72,8 @@ class Parameters {
 
   const std::string& context() const { return context_; }
   const std::map<std::string, ParameterValue>& resolved() const { return resolved_; }
+  /// Every parameter read so far, in the order first read (derived values as "derived").
+  const std::vector<ParameterSpec>& specs() const { return specs_; }
 
   /// Message prefix for key `name`: "material.sand.nu".
   std::string key(std::string_view name) const;
@@ -71,6 +83,9 @@ class Parameters {
   std::map<std::string, ParameterValue> values_;
   std::map<std::string, ParameterValue> resolved_;
   mutable std::set<std::string, std::less<>> read_;
+  std::vector<ParameterSpec> specs_;
+
+  void note(ParameterSpec spec);
 };
 
 }  // namespace duet::constitutive

@@ -23,6 +23,9 @@ struct ModelInfo {
   std::string summary;  // one line, for listings
   ModelFactory make;
   std::map<std::string, ParameterValue> example;  // a valid parameter set (the demo uses it)
+  // Valid parameter sets of the model's other forms (hypoplastic: c1..c4 in place of Ei nu phi
+  // psi), so `duet models` lists every parameter the model reads.
+  std::vector<std::map<std::string, ParameterValue>> other_forms = {};
 };
 
 class ModelRegistry {

@@ -161,7 +161,10 @@ class IspfemMethod final : public Solver {
 void register_espfem(MethodRegistry& registry) {
   registry.add({"espfem",
                 "explicit smoothed particle finite element method (Yuan et al. 2019; papers/004)",
-                [](const Scene& scene) { return std::make_unique<EspfemMethod>(scene); }});
+                [](const Scene& scene) { return std::make_unique<EspfemMethod>(scene); },
+                /*dynamic=*/true,
+                /*bytes_per_particle=*/2048.0,
+                /*option_sections=*/{"spfem"}});
 }
 
 void register_ispfem(MethodRegistry& registry) {
@@ -171,7 +174,8 @@ void register_ispfem(MethodRegistry& registry) {
                 [](const Scene& scene) { return std::make_unique<IspfemMethod>(scene); },
                 /*dynamic=*/false,
                 // the sparse tangent and its LU factors: 2.0 GB at 62,500 nodes (footing, dp 0.02)
-                /*bytes_per_particle=*/32768.0});
+                /*bytes_per_particle=*/32768.0,
+                /*option_sections=*/{"spfem", "spfem.implicit"}});
 }
 
 }  // namespace duet::spfem

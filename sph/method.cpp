@@ -134,7 +134,10 @@ class SphMethod final : public Solver {
 void register_sph(MethodRegistry& registry) {
   registry.add({"sph",
                 "smoothed particle hydrodynamics for soils (Peng et al. 2015; Bui et al. 2008)",
-                [](const Scene& scene) { return std::make_unique<SphMethod>(scene); }});
+                [](const Scene& scene) { return std::make_unique<SphMethod>(scene); },
+                /*dynamic=*/true,
+                /*bytes_per_particle=*/2048.0,
+                /*option_sections=*/{"sph"}});
 }
 
 }  // namespace duet::sph

@@ -2,28 +2,18 @@
 // footing at dp 0.1, dt = cfl h / c = 0.05 x 0.1 sqrt(2) / 100 m/s = 7.07e-5 s, 4 s / dt = 56,569
 // steps, the count the run itself takes when nothing else limits its step.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdio>
 #include <string>
+
+#include "tests/benchmarks/child_run.hpp"
 
 namespace duet {
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using Result = test::DuetResult;
 
 Result duet(const std::string& arguments) {
-  const std::string command = std::string("'") + DUET_BINARY + "' " + arguments + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
+  return test::run_duet(arguments);
 }
 
 const std::string kFooting = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing.toml";

@@ -1,11 +1,14 @@
 #pragma once
 // For the tests that run the duet program as a child process and look at what it left behind
-// (signals, kills, output faults): start it, wait for its first frame, read its files.
+// (signals, kills, output faults, listings): run it, or start it and wait for its first frame;
+// read its files.
 
 #include <fcntl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -21,6 +24,23 @@ inline std::string read_text(const std::filesystem::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+struct DuetResult {
+  int status = -1;     // exit status, -1 when killed by a signal
+  std::string output;  // stdout and stderr
+};
+
+/// Runs `duet ARGUMENTS` (a shell word list) to its end.
+inline DuetResult run_duet(const std::string& arguments) {
+  const std::string command = std::string("'") + DUET_BINARY + "' " + arguments + " 2>&1";
+  DuetResult r;
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
 }
 
 /// `duet run` on the sand collapse through SPH with `arguments` after the scene, stdout and stderr

@@ -50,8 +50,12 @@ class BallisticSolver final : public Solver {
 };
 
 MethodInfo ballistic(BallisticOptions options) {
-  return {"ballistic", "test-only rigid translation",
-          [options](const Scene&) { return std::make_unique<BallisticSolver>(options); }};
+  return {"ballistic",
+          "test-only rigid translation",
+          [options](const Scene&) { return std::make_unique<BallisticSolver>(options); },
+          /*dynamic=*/true,
+          /*bytes_per_particle=*/2048.0,
+          /*option_sections=*/{}};
 }
 
 // A 0.1 m x 0.05 m block at spacing 0.01 moving right at 0.1 m/s for 1 s.

@@ -1,0 +1,219 @@
+#include "common/scene_keys.hpp"
+
+#include <algorithm>
+
+namespace duet {
+
+namespace {
+
+const std::string kReq = "required";
+
+std::vector<SceneKey> make_keys() {
+  return {
+      // --- top level ---
+      {"", "name", "string", "", "(the file's stem)", "the scene's name in output and reports"},
+      {"", "description", "string", "", "\"\"", "free text"},
+      {"", "spacing", "number", "m", kReq, "particle spacing dp (--spacing overrides it)"},
+      {"", "gravity", "[x, y]", "m/s^2", "[0.0, 0.0]", "body force per unit mass"},
+      {"", "confined", "boolean", "", "false",
+       "every body must lie inside the walls and rigid bodies (checked at load)"},
+      {"", "time", "table", "", kReq, "[time]: end time and output interval"},
+      {"", "domain", "table", "", "(bounding box + padding)",
+       "[domain]: a particle leaving it fails the run"},
+      {"", "initial_stress", "table", "", "(kind = \"none\")",
+       "[initial_stress]: how bodies start"},
+      {"", "material", "tables", "", kReq, "[material.<name>]: model, density, model parameters"},
+      {"", "body", "tables", "", kReq, "[body.<name>]: a region of soil sampled into particles"},
+      {"", "wall", "tables", "", "(none)", "[wall.<name>]: a polyline boundary"},
+      {"", "rigid_body", "tables", "", "(none)",
+       "[rigid_body.<name>]: a polygon with prescribed motion (a footing, a penetrometer)"},
+      {"", "load", "tables", "", "(none)", "[load.<name>]: a force shared by particles of a body"},
+      {"", "measure", "tables", "", "(none)", "[measure.<name>]: a quantity recorded each output"},
+      {"", "reference", "tables", "", "(none)",
+       "[reference.<measure>]: a published value a measure is scored against"},
+      {"", "sph", "table", "", "(defaults below)", "[sph]: options of the SPH method"},
+      {"", "spfem", "table", "", "(defaults below)", "[spfem]: options of both SPFEM methods"},
+      {"", "strength_reduction", "table", "", "(factor = 1)",
+       "[strength_reduction]: c and phi divided by a factor (Peng 2015 eqs 39-40)"},
+      {"", "checks", "table", "", "(defaults below)",
+       "[checks]: thresholds that fail a run that went wrong"},
+      // --- [time] ---
+      {"time", "end_time", "number", "s", kReq, "simulated time of the run"},
+      {"time", "output_interval", "number", "s", "(end_time / 50)",
+       "time between frames and measure samples"},
+      // --- [domain] ---
+      {"domain", "min", "[x, y]", "m", "(bounding box - padding)", "lower-left corner"},
+      {"domain", "max", "[x, y]", "m", "(bounding box + padding)", "upper-right corner"},
+      {"domain", "padding", "number", "m", "(extent / 4)",
+       "margin around bodies, walls and rigid bodies when min/max are not given"},
+      // --- [initial_stress] ---
+      {"initial_stress", "kind", "string", "", "\"none\"",
+       "none | isotropic | geostatic | gravity-loading"},
+      {"initial_stress", "pressure", "number", "Pa", "(required for isotropic)",
+       "compressive pressure of kind = isotropic"},
+      {"initial_stress", "K0", "number", "-", "(required for geostatic)",
+       "sigma_h / sigma_v of kind = geostatic"},
+      {"initial_stress", "damping", "number", "1/s", "(required for gravity-loading)",
+       "velocity damping while gravity is applied before the clock starts"},
+      {"initial_stress", "time", "number", "s", "(required for gravity-loading)",
+       "duration of the gravity loading before the clock starts"},
+      // --- [strength_reduction] ---
+      {"strength_reduction", "factor", "number", "-", "1.0", "f: c / f and phi reduced by f"},
+      {"strength_reduction", "rule", "string", "", "\"tangent\"",
+       "tangent: tan phi / f (Griffiths & Lane 1999) | angle: phi / f (Peng 2015 eq 40)"},
+      // --- [checks] ---
+      {"checks", "kinetic_energy_factor", "number", "-", "2.0",
+       "fail when kinetic energy > this x the energy put in (0: off)"},
+      {"checks", "lift_off_fraction", "number", "-", "0.5",
+       "fail when this fraction of the particles on a fixed no-slip wall left it (0: off)"},
+      {"checks", "lift_off_distance", "number", "spacings", "2.0",
+       "distance from the wall that counts as having left it"},
+      // --- [material.<name>] ---
+      {"material.<name>", "model", "string", "", kReq,
+       "constitutive model (duet models lists them and their parameters)"},
+      {"material.<name>", "density", "number", "kg/m^3", kReq, "mass density"},
+      {"material.<name>", "<parameter>", "number | string", "(per model)", "(per model)",
+       "the model's parameters: duet models MODEL"},
+      // --- [body.<name>] ---
+      {"body.<name>", "material", "string", "", kReq, "name of a [material.<name>]"},
+      {"body.<name>", "shape", "string", "", "(polygon if vertices, else rectangle)",
+       "rectangle | polygon"},
+      {"body.<name>", "min", "[x, y]", "m", "(required for rectangle)", "lower-left corner"},
+      {"body.<name>", "max", "[x, y]", "m", "(required for rectangle)", "upper-right corner"},
+      {"body.<name>", "vertices", "[[x, y], ...]", "m", "(required for polygon)",
+       "outline of a simple polygon, either orientation"},
+      {"body.<name>", "initial_velocity", "[x, y]", "m/s", "[0.0, 0.0]", "velocity at t = 0"},
+      // --- [wall.<name>] ---
+      {"wall.<name>", "points", "[[x, y], ...]", "m", kReq,
+       "polyline (closed when the last point repeats the first)"},
+      {"wall.<name>", "condition", "string", "", "\"no-slip\"", "no-slip | free-slip"},
+      {"wall.<name>", "velocity", "[[t, vx, vy], ...]", "s, m/s", "(fixed)",
+       "translation speed, piecewise linear in time"},
+      {"wall.<name>", "centre", "[x, y]", "m", "(required with radial_velocity)",
+       "centre of a radial motion"},
+      {"wall.<name>", "radial_velocity", "[[t, v_r], ...]", "s, m/s", "(none)",
+       "every point moves away from centre at v_r (cavity expansion)"},
+      // --- [rigid_body.<name>] ---
+      {"rigid_body.<name>", "vertices", "[[x, y], ...]", "m", kReq,
+       "outline of a simple polygon, either orientation"},
+      {"rigid_body.<name>", "velocity", "[[t, vx, vy], ...]", "s, m/s", "(fixed)",
+       "prescribed velocity, piecewise linear in time"},
+      {"rigid_body.<name>", "surface", "string", "", "\"rough\"", "rough | smooth | friction"},
+      {"rigid_body.<name>", "friction", "number", "-", "(required for friction)",
+       "Coulomb coefficient mu of surface = friction"},
+      // --- [load.<name>] ---
+      {"load.<name>", "body", "string", "", kReq, "name of the loaded [body.<name>]"},
+      {"load.<name>", "min", "[x, y]", "m", kReq, "lower-left corner of the loaded box"},
+      {"load.<name>", "max", "[x, y]", "m", kReq, "upper-right corner of the loaded box"},
+      {"load.<name>", "force", "[[t, fx, fy], ...]", "s, N/m", kReq,
+       "total force, shared equally by the particles initially in the box"},
+      // --- [measure.<name>] ---
+      {"measure.<name>", "kind", "string", "", kReq,
+       "front | height | reaction | wall_stress | max_displacement | displacement | period | "
+       "safety_factor"},
+      {"measure.<name>", "target", "string", "", "(required but for safety_factor)",
+       "the body, wall or rigid body measured"},
+      {"measure.<name>", "component", "string", "", "(per kind)",
+       "x | y | magnitude (reaction, wall_stress, displacement: required; max_displacement: "
+       "magnitude; period: x | y)"},
+      {"measure.<name>", "at", "string", "", "\"end\"", "end | max | series | time"},
+      {"measure.<name>", "time", "number", "s", "(required for at = time)",
+       "when the value is taken"},
+      {"measure.<name>", "min_thickness", "number", "spacings", "(0 for front)",
+       "front: ignore columns thinner than this"},
+      {"measure.<name>", "divide_by", "string", "", "\"\"",
+       "another measure this one is divided by"},
+      {"measure.<name>", "scale", "number", "-", "1.0", "factor applied to the value"},
+      // --- [reference.<measure>] ---
+      {"reference.<measure>", "value", "number", "(the measure's)", kReq, "the reference value"},
+      {"reference.<measure>", "source", "string", "", kReq, "where the value comes from"},
+      {"reference.<measure>", "tolerance", "number", "-", "0.0",
+       "relative error that passes (0: reported, not scored)"},
+      // --- [sph] ---
+      {"sph", "kernel", "string", "", "\"cubic-spline\"", "cubic-spline | wendland-c2"},
+      {"sph", "h_over_dp", "number", "-", "1.4142135623730951", "smoothing length / spacing"},
+      {"sph", "alpha", "number", "-", "1.0", "artificial viscosity, linear term (Monaghan)"},
+      {"sph", "beta", "number", "-", "0.1", "artificial viscosity, quadratic term"},
+      {"sph", "artificial_stress", "number", "-", "0.0",
+       "artificial stress coefficient against tensile instability (0: off)"},
+      {"sph", "cfl", "number", "-", "0.05", "Courant number of the time step"},
+      {"sph", "sound_speed", "number", "m/s", "100.0",
+       "sound speed of the time step (the larger of it and the model's P-wave speed)"},
+      {"sph", "wall_treatment", "string", "", "\"dummy\"", "dummy (layers of dummy particles)"},
+      {"sph", "dummy_layers", "integer", "-", "3", "layers of dummy particles behind a wall"},
+      {"sph", "wall_stress", "string", "", "\"sigma-max\"",
+       "stress of dummy particles: sigma-max (Peng 2015) | bui (Bui 2008)"},
+      {"sph", "integrator", "string", "", "\"verlet\"", "verlet | leapfrog"},
+      {"sph", "continuity", "boolean", "", "false",
+       "evolve density by the continuity equation (else constant)"},
+      {"sph", "dummy_velocity", "string", "", "\"wall\"",
+       "velocity of no-slip dummy particles: wall | extrapolated (Morris 1997)"},
+      // --- [spfem] ---
+      {"spfem", "alpha_factor", "number", "-", "1.5", "alpha shape radius / spacing"},
+      {"spfem", "time_step_safety", "number", "-", "0.5", "espfem: safety on the critical step"},
+      {"spfem", "damping", "number", "1/s", "0.0", "espfem: viscous damping -damping m v"},
+      {"spfem", "local_damping", "number", "-", "0.0",
+       "espfem: local non-viscous damping (Cundall), in [0, 1]"},
+      {"spfem", "stabilisation", "number", "-", "0.0",
+       "weight of the smoothed-strain stabilisation of nodal integration"},
+      {"spfem", "remesh", "string", "", "\"every-step\"", "every-step | angle"},
+      {"spfem", "remesh_angle", "number", "deg", "15.0",
+       "remesh = angle: remesh when a triangle's smallest angle drops below it"},
+      {"spfem", "boundary_layer", "boolean", "", "true",
+       "extend surface nodes' smoothing cells over the dp/2 layer outside the alpha shape"},
+      {"spfem", "time_step", "string", "", "\"cell-size\"",
+       "espfem critical step: cell-size | gershgorin"},
+      {"spfem", "implicit", "table", "", "(defaults below)", "[spfem.implicit]: ispfem options"},
+      {"spfem", "stress_increment_limit", "number", "-", "0.5",
+       "espfem: largest relative stress increment per step of a stiffening model (0: none)"},
+      {"spfem", "stiffness_stabilisation", "number", "-", "0.0",
+       "hourglass-type stiffness stabilisation of nodal integration (0: off)"},
+      {"spfem", "remesh_angle_fraction", "number", "-", "0.0",
+       "remesh = angle: limit min(remesh_angle, fraction x angle at the last remesh)"},
+      // --- [spfem.implicit] ---
+      {"spfem.implicit", "tolerance", "number", "-", "1e-08", "Newton: relative residual"},
+      {"spfem.implicit", "displacement_tolerance", "number", "-", "1e-10",
+       "Newton: relative correction accepted with the residual within 100 x tolerance"},
+      {"spfem.implicit", "max_iterations", "integer", "-", "40", "Newton iterations per try"},
+      {"spfem.implicit", "load_steps", "integer", "-", "100",
+       "increments over end_time when increment = 0"},
+      {"spfem.implicit", "increment", "number", "s", "0.0",
+       "increment of the scene's time (0: end_time / load_steps)"},
+      {"spfem.implicit", "adaptive", "boolean", "", "true",
+       "halve a failed increment, grow an easy one by 1.5"},
+      {"spfem.implicit", "easy_iterations", "integer", "-", "4",
+       "an increment converging within this many iterations grows the next"},
+      {"spfem.implicit", "max_step_cuts", "integer", "-", "8", "halvings in a row before failing"},
+      {"spfem.implicit", "active_set_passes", "integer", "-", "3",
+       "contact changes re-solved within one increment"},
+  };
+}
+
+}  // namespace
+
+const std::vector<SceneKey>& scene_keys() {
+  static const std::vector<SceneKey> keys = make_keys();
+  return keys;
+}
+
+std::vector<std::string> scene_keys_of(std::string_view section) {
+  std::vector<std::string> out;
+  for (const SceneKey& k : scene_keys()) {
+    if (k.section == section && k.key != "<parameter>") out.push_back(k.key);
+  }
+  return out;
+}
+
+std::vector<std::string> scene_sections() {
+  std::vector<std::string> out;
+  for (const SceneKey& k : scene_keys()) {
+    if (std::find(out.begin(), out.end(), k.section) == out.end()) out.push_back(k.section);
+  }
+  return out;
+}
+
+bool is_literal_default(const SceneKey& key) {
+  return !key.fallback.empty() && key.fallback != "required" && key.fallback.front() != '(';
+}
+
+}  // namespace duet
