@@ -108,8 +108,15 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   solver->initialise(scene, particles);
 
   RunWriter writer(options.out_dir);
+  std::vector<std::string> boundary_names;
+  for (const Wall& w : scene.walls) boundary_names.push_back(w.name);
+  for (const RigidBody& r : scene.rigid_bodies) boundary_names.push_back(r.name);
   writer.write_metadata(scene.name, method.name, scene.resolved_toml, source_commit(),
-                        scene.spacing);
+                        scene.spacing, boundary_names);
+  // The walls and rigid bodies where they are at `t`, and the solver's mesh.
+  const auto shown = [&](double t) {
+    return FrameGeometry{boundary_lines_at(scene, t), solver->mesh_triangles(particles)};
+  };
   MeasureRecorder measures(scene);
   Timers output_timers;
 
@@ -125,7 +132,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
 
   {
     ScopedTimer t(output_timers, Phase::output);
-    writer.write_frame(time, particles);
+    writer.write_frame(time, particles, shown(time));
   }
   measures.sample(time, particles, solver->reactions());
   std::optional<Progress> progress;
@@ -178,7 +185,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     if (time >= next_output) {
       ScopedTimer t(output_timers, Phase::output);
       try {
-        writer.write_frame(time, particles);
+        writer.write_frame(time, particles, shown(time));
         writer.write_series(measures.names(), measures.columns());
       } catch (const std::exception& e) {
         // A full disk or a quota: the run ends, the frames written before stay readable.
@@ -196,7 +203,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   if (!output_failed) {
     ScopedTimer t(output_timers, Phase::output);
     try {
-      writer.write_frame(time, particles);
+      writer.write_frame(time, particles, shown(time));
       writer.write_series(measures.names(), measures.columns());
     } catch (const std::exception& e) {
       failure = Failure{std::string("writing the output failed: ") + e.what(), time};

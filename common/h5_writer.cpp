@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -208,6 +209,15 @@ void write_extendible(hid_t location, const std::string& name, const std::vector
           path, "write dataset " + name);
 }
 
+/// Rows of fixed-size integer arrays, flattened row-major.
+template <std::size_t N>
+std::vector<std::int32_t> flat(const std::vector<std::array<std::int32_t, N>>& rows) {
+  std::vector<std::int32_t> out;
+  out.reserve(N * rows.size());
+  for (const auto& row : rows) out.insert(out.end(), row.begin(), row.end());
+  return out;
+}
+
 std::vector<double> rows_of_vec2(const std::vector<Vec2>& v) {
   std::vector<double> out(3 * v.size(), 0.0);  // z = 0
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -365,7 +375,8 @@ void RunWriter::flush_and_describe() {
 
 void RunWriter::write_metadata(const std::string& scene_name, const std::string& method,
                                const std::string& resolved_scene_toml,
-                               const std::string& git_commit, double spacing) {
+                               const std::string& git_commit, double spacing,
+                               const std::vector<std::string>& boundary_names) {
   const QuietErrors quiet;
   // Written again on a second call: start from an empty group.
   checked(H5Ldelete(file_, "/meta", H5P_DEFAULT), h5_path_, "delete /meta");
@@ -376,11 +387,15 @@ void RunWriter::write_metadata(const std::string& scene_name, const std::string&
   write_string_attribute(meta.get(), "method", method, h5_path_);
   write_string_attribute(meta.get(), "git_commit", git_commit, h5_path_);
   write_double_attribute(meta.get(), "spacing", spacing, h5_path_);
+  std::string names;
+  for (const std::string& name : boundary_names) names += (names.empty() ? "" : "\n") + name;
+  write_string_attribute(meta.get(), "boundary_names", names, h5_path_);
   write_string_dataset(meta.get(), "scene_toml", resolved_scene_toml, h5_path_);
   checked(H5Fflush(file_, H5F_SCOPE_LOCAL), h5_path_, "flush");
 }
 
-void RunWriter::write_frame(double time, const Particles& particles) {
+void RunWriter::write_frame(double time, const Particles& particles,
+                            const FrameGeometry& geometry) {
   const QuietErrors quiet;
   check_sizes(particles, h5_path_);
   if (!frames_.empty() && frames_.back().time == time) {
@@ -453,6 +468,24 @@ void RunWriter::write_frame(double time, const Particles& particles) {
       values[i] = known ? internal.value(i, material, k) : std::nan("");
     }
     scalar(internal_dataset_name(internal.names[k]), values);
+  }
+
+  const BoundaryLines& lines = geometry.boundaries;
+  if (!lines.segments.empty()) {
+    frame.n_boundary_points = lines.points.size();
+    frame.n_boundary_segments = lines.segments.size();
+    write_dataset(g, "boundary_points", rows_of_vec2(lines.points), lines.points.size(), 3,
+                  h5_path_);
+    write_dataset(g, "boundary_segments", flat(lines.segments), lines.segments.size(), 2, h5_path_);
+    write_dataset(g, "boundary", lines.owner, lines.owner.size(), 0, h5_path_);
+  }
+  if (geometry.triangles && !geometry.triangles->empty()) {
+    const std::vector<MeshTriangle>& triangles = *geometry.triangles;
+    const std::vector<MeshEdge> edges = surface_edges(triangles);
+    frame.n_triangles = triangles.size();
+    frame.n_surface_edges = edges.size();
+    write_dataset(g, "triangles", flat(triangles), triangles.size(), 3, h5_path_);
+    write_dataset(g, "surface_edges", flat(edges), edges.size(), 2, h5_path_);
   }
 
   frames_.push_back(std::move(frame));

@@ -3,7 +3,8 @@
 // the measures and the run's metadata, and OUT/run.xdmf describing the frames for ParaView.
 //
 // run.h5 layout
-//   /meta                 attributes scene, method, git_commit (strings), spacing (m);
+//   /meta                 attributes scene, method, git_commit (strings), spacing (m),
+//                         boundary_names (the walls then rigid bodies, one per line);
 //                         dataset scene_toml (the resolved scene, one string)
 //   /frames/NNNNNN        attribute time (s); datasets, n = particles:
 //       position, velocity, displacement   n x 3 (z = 0: plane problems in XYZ geometry)
@@ -14,6 +15,11 @@
 //       equivalent_strain = sqrt(2/3 e:e), e the deviator of the accumulated strain   n
 //       one dataset per internal variable, by its name   n (NaN where a model lacks it)
 //       vertices = 0 .. n-1 (int32), the XDMF Polyvertex connectivity   n
+//       walls and rigid bodies at the frame's time (absent in a scene without them):
+//         boundary_points m x 3, boundary_segments k x 2 (int32, rows of boundary_points),
+//         boundary k (int32: index of the wall, then rigid body, in /meta boundary_names order)
+//       the SPFEM mesh in use (absent for SPH): triangles t x 3 and surface_edges e x 2 (int32,
+//         particle rows; the surface edges are those of one triangle)
 //   /series/<name>        1-D, one per measure column ("time" first), rewritten at each call
 //
 // Every write_frame / write_series ends with H5Fflush and a rewritten run.xdmf, so a run that
@@ -26,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "common/frame_geometry.hpp"
 #include "common/particles.hpp"
 #include "common/tensor.hpp"
 #include "common/xdmf.hpp"
@@ -43,12 +50,13 @@ class RunWriter {
 
   void write_metadata(const std::string& scene_name, const std::string& method,
                       const std::string& resolved_scene_toml, const std::string& git_commit,
-                      double spacing);
+                      double spacing, const std::vector<std::string>& boundary_names = {});
 
   /// Appends frame /frames/NNNNNN (NNNNNN = number of frames so far). A frame at the same time as
   /// the previous one replaces it (the driver always writes the final state, which may coincide
   /// with the last output time).
-  void write_frame(double time, const Particles& particles);
+  /// `geometry`: the walls and rigid bodies and the mesh shown with the particles.
+  void write_frame(double time, const Particles& particles, const FrameGeometry& geometry = {});
 
   /// Writes (or rewrites) /series/<names[k]> = columns[k]; names and columns have equal length.
   void write_series(const std::vector<std::string>& names,

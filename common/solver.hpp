@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/frame_geometry.hpp"
 #include "common/json.hpp"
 #include "common/particles.hpp"
 #include "common/tensor.hpp"
@@ -54,6 +55,12 @@ class Solver {
 
   /// Per-phase wall time so far (neighbours, constitutive, forces, mesh, solve, ...).
   virtual const Timers& timers() const = 0;
+
+  /// The triangle mesh in use (rows of `particles`, the state the solver advances), for the
+  /// frames; null without one (SPH).
+  virtual const std::vector<MeshTriangle>* mesh_triangles(const Particles& /*particles*/) {
+    return nullptr;
+  }
 
   /// Method-specific counters for metrics.json (penetrations, remeshes, Newton iterations, ...).
   virtual Json diagnostics() const { return Json::object(); }

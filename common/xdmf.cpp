@@ -53,41 +53,100 @@ std::string time_text(double time) {
 
 }  // namespace
 
+namespace {
+
+std::string frame_name(const XdmfFrame& frame) {
+  return frame.group.substr(frame.group.find_last_of('/') + 1);
+}
+
+/// Topology of `cells` cells of `per_cell` nodes from dataset `connectivity` of the frame.
+std::string topology(const std::string& h5, const XdmfFrame& frame, const std::string& type,
+                     const std::string& connectivity, std::size_t cells, int per_cell) {
+  std::string x = "    <Topology TopologyType=\"" + type + "\" NumberOfElements=\"" +
+                  std::to_string(cells) + "\" NodesPerElement=\"" + std::to_string(per_cell) +
+                  "\">\n";
+  x += "     " + data_item(h5, frame.group + "/" + connectivity, cells, per_cell, "Int", 4) + "\n";
+  x += "    </Topology>\n";
+  return x;
+}
+
+std::string geometry(const std::string& h5, const XdmfFrame& frame, const std::string& dataset,
+                     std::size_t points) {
+  return "    <Geometry GeometryType=\"XYZ\">\n     " +
+         data_item(h5, frame.group + "/" + dataset, points, 3, "Float", 8) + "\n    </Geometry>\n";
+}
+
+std::string point_fields(const std::string& h5, const XdmfFrame& frame) {
+  std::string x;
+  for (const XdmfField& field : frame.fields) {
+    x += "    <Attribute Name=\"" + xml_escape(field.name) + "\" AttributeType=\"" +
+         field.attribute_type + "\" Center=\"Node\">\n";
+    x += "     " +
+         data_item(h5, frame.group + "/" + field.name, frame.n_points, field.components,
+                   field.number_type, field.precision) +
+         "\n";
+    x += "    </Attribute>\n";
+  }
+  return x;
+}
+
+std::string grid_open(const std::string& prefix, const XdmfFrame& frame) {
+  return "   <Grid Name=\"" + prefix + "_" + frame_name(frame) +
+         "\" GridType=\"Uniform\">\n    <Time Value=\"" + time_text(frame.time) + "\"/>\n";
+}
+
+/// One temporal collection of the frames for which `grid` returns a grid ("" to skip).
+template <typename Grid>
+std::string collection(const std::string& name, const std::vector<XdmfFrame>& frames, Grid grid) {
+  std::string body;
+  for (const XdmfFrame& frame : frames) body += grid(frame);
+  if (body.empty()) return "";
+  return "  <Grid Name=\"" + name + "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n" +
+         body + "  </Grid>\n";
+}
+
+}  // namespace
+
 std::string xdmf_document(const std::string& h5_file_name, const std::vector<XdmfFrame>& frames) {
+  const std::string& h5 = h5_file_name;
   std::string x;
   x += "<?xml version=\"1.0\" ?>\n";
   x += "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n";
   x += "<Xdmf Version=\"2.0\">\n";
   x += " <Domain>\n";
+  // The particle grid is always written, even with no frames yet (an empty collection).
   x += "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (const XdmfFrame& frame : frames) {
-    const std::string name = frame.group.substr(frame.group.find_last_of('/') + 1);
-    const std::size_t n = frame.n_points;
-    x += "   <Grid Name=\"frame_" + name + "\" GridType=\"Uniform\">\n";
-    x += "    <Time Value=\"" + time_text(frame.time) + "\"/>\n";
     // One vertex cell per particle. The connectivity is explicit: ParaView's Xdmf3 readers make
     // no cells from a Polyvertex topology without it (only its XDMF (2) reader does).
-    x += "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(n) +
-         "\" NodesPerElement=\"1\">\n";
-    x += "     " + data_item(h5_file_name, frame.group + "/" + frame.vertices, n, 1, "Int", 4) +
-         "\n";
-    x += "    </Topology>\n";
-    x += "    <Geometry GeometryType=\"XYZ\">\n";
-    x += "     " + data_item(h5_file_name, frame.group + "/" + frame.geometry, n, 3, "Float", 8) +
-         "\n";
-    x += "    </Geometry>\n";
-    for (const XdmfField& field : frame.fields) {
-      x += "    <Attribute Name=\"" + xml_escape(field.name) + "\" AttributeType=\"" +
-           field.attribute_type + "\" Center=\"Node\">\n";
-      x += "     " +
-           data_item(h5_file_name, frame.group + "/" + field.name, n, field.components,
-                     field.number_type, field.precision) +
-           "\n";
-      x += "    </Attribute>\n";
-    }
-    x += "   </Grid>\n";
+    x += grid_open("frame", frame) +
+         topology(h5, frame, "Polyvertex", frame.vertices, frame.n_points, 1) +
+         geometry(h5, frame, frame.geometry, frame.n_points) + point_fields(h5, frame) +
+         "   </Grid>\n";
   }
   x += "  </Grid>\n";
+  x += collection("boundaries", frames, [&](const XdmfFrame& frame) -> std::string {
+    if (frame.n_boundary_segments == 0) return "";
+    return grid_open("boundaries", frame) +
+           topology(h5, frame, "Polyline", "boundary_segments", frame.n_boundary_segments, 2) +
+           geometry(h5, frame, "boundary_points", frame.n_boundary_points) +
+           "    <Attribute Name=\"boundary\" AttributeType=\"Scalar\" Center=\"Cell\">\n     " +
+           data_item(h5, frame.group + "/boundary", frame.n_boundary_segments, 1, "Int", 4) +
+           "\n    </Attribute>\n   </Grid>\n";
+  });
+  x += collection("mesh", frames, [&](const XdmfFrame& frame) -> std::string {
+    if (frame.n_triangles == 0) return "";
+    return grid_open("mesh", frame) +
+           topology(h5, frame, "Triangle", "triangles", frame.n_triangles, 3) +
+           geometry(h5, frame, frame.geometry, frame.n_points) + point_fields(h5, frame) +
+           "   </Grid>\n";
+  });
+  x += collection("surface", frames, [&](const XdmfFrame& frame) -> std::string {
+    if (frame.n_surface_edges == 0) return "";
+    return grid_open("surface", frame) +
+           topology(h5, frame, "Polyline", "surface_edges", frame.n_surface_edges, 2) +
+           geometry(h5, frame, frame.geometry, frame.n_points) + "   </Grid>\n";
+  });
   x += " </Domain>\n";
   x += "</Xdmf>\n";
   return x;

@@ -1,7 +1,13 @@
 #pragma once
-// The XDMF 2 description of the particle frames in run.h5, so that ParaView (its "XDMF Reader")
-// opens run.xdmf directly: one temporal collection of Polyvertex grids, one per frame, whose
-// DataItems point at the HDF5 datasets "run.h5:/frames/NNNNNN/<field>".
+// The XDMF 2 description of the frames in run.h5, so that ParaView (its "XDMF Reader") opens
+// run.xdmf directly. Up to four temporal collections, each a block in ParaView, whose DataItems
+// point at the HDF5 datasets "run.h5:/frames/NNNNNN/<dataset>":
+//   particles   Polyvertex grid of the particles with every field
+//   boundaries  Polyline grid of the walls and rigid bodies at the frame's time (cell field
+//               `boundary`: index of the wall, then rigid body, in the scene's order)
+//   mesh        Triangle grid of the SPFEM mesh in use, on the particles' points and fields
+//   surface     Polyline grid of the mesh's surface edges (edges of one triangle)
+// A collection lists only the frames that have its grid (no walls: no boundaries; SPH: no mesh).
 
 #include <cstddef>
 #include <string>
@@ -25,6 +31,10 @@ struct XdmfFrame {
   std::string geometry = "position";  // n x 3 dataset in the group
   std::string vertices = "vertices";  // n int32 dataset 0 .. n-1: one vertex cell per particle
   std::vector<XdmfField> fields;
+  std::size_t n_boundary_points = 0;    // dataset boundary_points, n x 3
+  std::size_t n_boundary_segments = 0;  // boundary_segments (n x 2 int32), boundary (n int32)
+  std::size_t n_triangles = 0;          // triangles, n x 3 int32 (particle rows)
+  std::size_t n_surface_edges = 0;      // surface_edges, n x 2 int32 (particle rows)
 };
 
 /// The whole document for `frames`, whose datasets live in `h5_file_name` (relative to the .xdmf).

@@ -90,6 +90,15 @@ std::vector<Reaction> named_reactions(const std::vector<NodeBoundary>& boundarie
   return out;
 }
 
+/// The mesh of the last step, or before the first step the one it will build (a frame at t = 0).
+const std::vector<MeshTriangle>* mesh_in_use(const NodalDiscretisation& discretisation,
+                                             const Particles& particles, AlphaMesh& preview) {
+  if (!discretisation.mesh().triangles.empty()) return &discretisation.mesh().triangles;
+  build_alpha_mesh(particles.position,
+                   discretisation.options().alpha_factor * discretisation.spacing(), preview);
+  return &preview.triangles;
+}
+
 class EspfemMethod final : public Solver {
  public:
   explicit EspfemMethod(const Scene& scene) : solver_(make_setup<EspfemSetup>(scene)) {}
@@ -116,8 +125,13 @@ class EspfemMethod final : public Solver {
 
   Json diagnostics() const override { return solver_.diagnostics(); }
 
+  const std::vector<MeshTriangle>* mesh_triangles(const Particles& particles) override {
+    return mesh_in_use(solver_.discretisation(), particles, preview_);
+  }
+
  private:
   ExplicitSolver solver_;
+  AlphaMesh preview_;
   LoadedParticles loaded_;
 };
 
@@ -149,11 +163,16 @@ class IspfemMethod final : public Solver {
 
   Json diagnostics() const override { return solver_.diagnostics(); }
 
+  const std::vector<MeshTriangle>* mesh_triangles(const Particles& particles) override {
+    return mesh_in_use(solver_.discretisation(), particles, preview_);
+  }
+
  private:
   // Gravity loading: gravity in this many equal increments to a static equilibrium
   static constexpr int kSettleIncrements = 10;
   ImplicitSolver solver_;
   LoadedParticles loaded_;
+  AlphaMesh preview_;
 };
 
 }  // namespace

@@ -1,0 +1,57 @@
+// run.xdmf as ParaView reads it: each method's footing run (walls, a rigid footing pushed down,
+// and for SPFEM the mesh) opened with ParaView's own XDMF reader by pvbatch, every time step
+// checked against run.h5 and the footing's schedule (tests/benchmarks/paraview_read_check.py).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "tests/benchmarks/child_run.hpp"
+
+namespace duet {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Case {
+  const char* method;
+  const char* kind;  // what the check expects: "sph" (no mesh) or "spfem"
+};
+
+class XdmfInParaView : public testing::TestWithParam<Case> {};
+
+TEST_P(XdmfInParaView, ShowsParticlesBoundariesAndMeshAtEveryFrame) {
+  const Case c = GetParam();
+  const fs::path out = fs::temp_directory_path() / ("duet-xdmf-" + std::string(c.method));
+  fs::remove_all(out);
+  const std::string scene = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing.toml";
+  const test::DuetResult run = test::run_duet(
+      "run '" + scene + "' --method " + c.method +
+      " --spacing 0.25 --set time.end_time=0.2 --quiet --out '" + out.string() + "'");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::string script =
+      std::string(DUET_SOURCE_DIR) + "/tests/benchmarks/paraview_read_check.py";
+  // pvbatch: ParaView's batch Python, installed by `./duet test`.
+  const std::string command = "pvbatch '" + script + "' '" + out.string() + "' " + c.kind;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << output;
+  EXPECT_NE(output.find("ok: 5 time steps, 4 boundaries"), std::string::npos) << output;
+  fs::remove_all(out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, XdmfInParaView,
+                         testing::Values(Case{"sph", "sph"}, Case{"espfem", "spfem"},
+                                         Case{"ispfem", "spfem"}),
+                         [](const testing::TestParamInfo<Case>& info) {
+                           return std::string(info.param.method);
+                         });
+
+}  // namespace
+}  // namespace duet
