@@ -68,7 +68,17 @@ struct RunArgs {
   std::string out;
   bool quiet = false;
   bool force = false;
+  bool no_plots = false;
+  std::string field = "von_mises";
 };
+
+/// Draws a run's charts and lists them; a chart that cannot be drawn is reported, never fatal.
+void draw_run_charts(const std::string& run_dir, const std::string& field) {
+  std::string why;
+  const std::vector<std::string> files = plot_run(run_dir, field, &why);
+  if (files.empty() && !why.empty()) std::cerr << "duet: charts skipped: " << why << '\n';
+  for (const std::string& f : files) std::cout << "chart: " << f << '\n';
+}
 
 /// 0 completed, 3 failed, 128 + signal interrupted.
 int run_exit_status(const RunSummary& summary) {
@@ -93,6 +103,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet", args->quiet, "no progress display");
   cmd->add_flag("--force", args->force,
                 "run even when the estimated memory exceeds the machine's (refused otherwise)");
+  cmd->add_flag("--no-plots", args->no_plots, "do not draw the run's charts at the end");
+  cmd->add_option("--field", args->field,
+                  "field the particle snapshots are coloured by (default von_mises)");
   cmd->callback([args, cmd, &exit_code] {
     std::vector<std::string> overrides = args->sets;
     if (cmd->count("--spacing") > 0) overrides.push_back(spacing_override(args->spacing));
@@ -106,6 +119,31 @@ void add_run_command(CLI::App& app, int& exit_code) {
     const RunSummary summary = run_scene(scene, method, options);
     std::cout << compare_markdown({summary}, 0.0) << "results: " << options.out_dir << '\n';
     exit_code = run_exit_status(summary);
+    if (!args->no_plots && !pending_interrupt()) draw_run_charts(options.out_dir, args->field);
+  });
+}
+
+void add_plot_command(CLI::App& app, int& exit_code) {
+  auto dir = std::make_shared<std::string>();
+  auto field = std::make_shared<std::string>("von_mises");
+  CLI::App* cmd = app.add_subcommand(
+      "plot",
+      "draw a run's charts beside it: every measure against time, the curves its measures imply "
+      "(load-settlement, pressure-expansion, run-out and height), particle snapshots");
+  cmd->add_option("run_dir", *dir, "folder of a duet run (metrics.json, run.h5)")->required();
+  cmd->add_option("--field", *field,
+                  "field the snapshots are coloured by: von_mises (default), pressure, "
+                  "equivalent_strain, density, body, material or an internal variable");
+  cmd->callback([dir, field, &exit_code] {
+    std::string why;
+    const std::vector<std::string> files = plot_run(*dir, *field, &why);
+    if (files.empty()) {
+      std::cerr << "duet: plot " << *dir << ": " << (why.empty() ? "nothing to draw" : why) << '\n';
+      exit_code = 1;
+      return;
+    }
+    for (const std::string& f : files) std::cout << f << '\n';
+    exit_code = 0;
   });
 }
 
@@ -282,6 +320,9 @@ void add_demo_command(CLI::App& app, int& exit_code) {
         options.out_dir = *out + "/" + name + "-dp" + spacing;
         std::cerr << "duet demo: collapse through " << name << " at spacing " << spacing << " m\n";
         runs.push_back(run_scene(scene, builtin_methods().find(name), options));
+        // The collapse itself: run-out and height against time, the deposit at three moments
+        // coloured by the accumulated shear strain.
+        if (!pending_interrupt()) draw_run_charts(options.out_dir, "equivalent_strain");
       }
     }
     write_compare_csv(*out + "/compare.csv", runs);

@@ -1,7 +1,12 @@
 #include "benchmarks/plotting.hpp"
 
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+
+#include "common/input_error.hpp"
 
 namespace duet {
 
@@ -35,6 +40,64 @@ std::string plotting_python() {
     return std::string();
   }();
   return found;
+}
+
+namespace {
+
+/// Runs `command`, returning its exit status and what it printed (stdout and stderr).
+int run_capturing(const std::string& command, std::string& output) {
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return -1;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int raw = pclose(pipe);
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+}  // namespace
+
+std::vector<std::string> plot_run(const std::string& run_dir, const std::string& field,
+                                  std::string* why) {
+  namespace fs = std::filesystem;
+  for (const char* name : {"metrics.json", "run.h5"}) {
+    if (!fs::exists(fs::path(run_dir) / name)) {
+      throw InputError(run_dir + ": no " + name + "; expected the folder of a duet run");
+    }
+  }
+  const std::string python = plotting_python();
+  if (python.empty()) {
+    if (why) *why = "no python3 with matplotlib found (install python3-matplotlib)";
+    return {};
+  }
+  std::string command = shell_quote(python);
+  command.append(" ")
+      .append(shell_quote(std::string(DUET_SOURCE_DIR) + "/benchmarks/plot/run.py"))
+      .append(" ")
+      .append(shell_quote(run_dir))
+      .append(" ")
+      .append(shell_quote(field))
+      .append(" 2>&1");
+  std::string output;
+  const int status = run_capturing(command, output);
+  std::vector<std::string> files;
+  std::string line;
+  for (const char c : output) {
+    if (c != '\n') {
+      line += c;
+      continue;
+    }
+    if (line.ends_with(".png") && fs::exists(line)) files.push_back(line);
+    line.clear();
+  }
+  if (status != 0) {
+    // The script names what is wrong (an unknown field) on its last line.
+    while (!output.empty() && output.back() == '\n') output.pop_back();
+    const std::string last = output.substr(output.find_last_of('\n') + 1);
+    if (last.starts_with("run.py: ")) throw InputError("plot " + run_dir + ": " + last.substr(8));
+    if (why) *why = "plot script run.py failed (status " + std::to_string(status) + "): " + last;
+    return {};
+  }
+  return files;
 }
 
 bool run_plot_script(const std::string& script, const std::vector<std::string>& arguments,

@@ -15,4 +15,10 @@ std::string plotting_python();
 bool run_plot_script(const std::string& script, const std::vector<std::string>& arguments,
                      std::string* why = nullptr);
 
+/// The charts of one run (benchmarks/plot/run.py) written beside it: series.png, the curves the
+/// scene's measures imply, snapshots_<field>.png. Returns the files written; on failure an empty
+/// list and `why`. Throws InputError when `run_dir` holds no run (no metrics.json or run.h5).
+std::vector<std::string> plot_run(const std::string& run_dir, const std::string& field,
+                                  std::string* why = nullptr);
+
 }  // namespace duet

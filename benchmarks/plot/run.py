@@ -1,0 +1,285 @@
+#!/usr/bin/env python3
+"""The charts of one run, written beside it (duet plot RUN_DIR; duet run draws them at the end).
+
+Usage: run.py RUN_DIR [FIELD]
+  series.png              every measure of /series against time
+  load_<target>.png       a wall's or rigid body's force against its displacement, when the scene
+                          records both as series (a footing: load against settlement)
+  expansion_<target>.png  a radial wall's pressure against a / a0 (a cavity)
+  collapse_<body>.png     a body's run-out and height against time (a collapse)
+  snapshots_<FIELD>.png   the particles at the first, middle and last frame coloured by FIELD
+                          (default von_mises), walls and rigid bodies drawn where they were
+Prints the files written, one per line. A failed or interrupted run is drawn too, its status and
+reason in every title.
+"""
+import json
+import math
+import os
+import sys
+import tomllib
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
+import numpy as np  # noqa: E402
+
+UNITS = {  # of a measure kind, before its scale
+    "front": "m", "height": "m", "reaction": "N/m", "wall_stress": "Pa",
+    "max_displacement": "m", "displacement": "m", "period": "s", "safety_factor": "-",
+}
+
+FIELD_UNITS = {  # of the one-column frame datasets (common/h5_writer.hpp)
+    "pressure": "Pa, compression positive", "von_mises": "Pa", "equivalent_strain": "-",
+    "density": "kg/m^3", "mass": "kg/m", "volume": "m^2", "body": "index", "material": "index",
+}
+
+
+def status_line(metrics):
+    status = metrics.get("status", "unknown")
+    if status == "completed":
+        return "completed"
+    failure = metrics.get("failure") or {}
+    reason = failure.get("reason", "")
+    at = failure.get("time", metrics.get("end_time"))
+    text = f"{status} at t = {at:.4g} s" if isinstance(at, (int, float)) else status
+    return f"{text}: {reason}" if reason else text
+
+
+def wrap(text, width=90):
+    words, lines, line = text.split(), [], ""
+    for w in words:
+        if len(line) + len(w) + 1 > width and line:
+            lines.append(line)
+            line = w
+        else:
+            line = f"{line} {w}".strip()
+    if line:
+        lines.append(line)
+    return "\n".join(lines)
+
+
+def unit_of(measure):
+    unit = UNITS.get(measure.get("kind"), "")
+    if measure.get("divide_by"):
+        return "-"
+    return unit if float(measure.get("scale", 1.0)) == 1.0 else f"{unit} x {measure['scale']:g}"
+
+
+def schedule_integral(knots, t):
+    """Integral from 0 to t of a piecewise-linear schedule [[t, v, ...], ...] (first component)."""
+    if not knots:
+        return 0.0
+
+    def value(s):
+        if s <= knots[0][0]:
+            return knots[0][1]
+        for a, b in zip(knots, knots[1:]):
+            if s <= b[0]:
+                w = (s - a[0]) / (b[0] - a[0]) if b[0] > a[0] else 1.0
+                return a[1] + w * (b[1] - a[1])
+        return knots[-1][1]
+
+    times = sorted({0.0, t} | {k[0] for k in knots if 0.0 < k[0] < t})
+    return sum(0.5 * (value(a) + value(b)) * (b - a) for a, b in zip(times, times[1:]))
+
+
+class Run:
+    def __init__(self, folder):
+        self.folder = folder
+        with open(os.path.join(folder, "metrics.json")) as f:
+            self.metrics = json.load(f)
+        self.h5 = h5py.File(os.path.join(folder, "run.h5"), "r")
+        self.scene = tomllib.loads(self.h5["meta/scene_toml"][()].decode())
+        self.series = {k: self.h5["series"][k][()] for k in self.h5["series"]} \
+            if "series" in self.h5 else {}
+        self.frames = sorted(self.h5["frames"].keys()) if "frames" in self.h5 else []
+        self.label = (f"{self.metrics.get('scene', '?')} / {self.metrics.get('method', '?')} / "
+                      f"dp = {self.metrics.get('spacing', 0):g} m")
+        self.status = status_line(self.metrics)
+        self.written = []
+
+    def title(self, fig, what):
+        fig.suptitle(wrap(f"{what}: {self.label} ({self.status})"), fontsize=9)
+
+    def save(self, fig, name):
+        path = os.path.join(self.folder, name)
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        self.written.append(path)
+
+
+def plot_series(run):
+    names = [k for k in run.series if k != "time"]
+    if not names or "time" not in run.series:
+        return
+    measures = run.scene.get("measure", {})
+    cols = min(3, len(names))
+    rows = math.ceil(len(names) / cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.0 * rows + 0.6), squeeze=False)
+    t = run.series["time"]
+    for ax, name in zip(axes.flat, names):
+        ax.plot(t, run.series[name], lw=1.2)
+        m = measures.get(name, {})
+        ax.set_title(f"{name} ({m.get('kind', '?')} of {m.get('target', '-')})", fontsize=9)
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel(f"{name} ({unit_of(m)})" if m else name)
+        ax.grid(alpha=0.3)
+    for ax in list(axes.flat)[len(names):]:
+        ax.set_visible(False)
+    run.title(fig, "measures against time")
+    fig.tight_layout(rect=(0, 0, 1, 0.93))
+    run.save(fig, "series.png")
+
+
+def series_of(run, kinds, target):
+    """Names of the recorded series of `kinds` on `target`, in the scene's order; a series equal
+    to an earlier one (the same quantity measured at the end and as a series) once."""
+    out = []
+    for name, m in run.scene.get("measure", {}).items():
+        if m.get("kind") in kinds and m.get("target") == target and name in run.series:
+            if not any(np.array_equal(run.series[name], run.series[o]) for o in out):
+                out.append(name)
+    return out
+
+
+def plot_load_displacement(run):
+    targets = list(run.scene.get("rigid_body", {})) + [
+        name for name, w in run.scene.get("wall", {}).items() if "radial_velocity" not in w]
+    measures = run.scene.get("measure", {})
+    for target in targets:
+        forces = series_of(run, ("reaction", "wall_stress"), target)
+        moves = series_of(run, ("displacement",), target)
+        if not forces or not moves:
+            continue
+        move = moves[0]
+        d = np.abs(run.series[move])
+        fig, axes = plt.subplots(1, len(forces), figsize=(5.0 * len(forces), 4.0), squeeze=False)
+        for ax, name in zip(axes[0], forces):
+            ax.plot(d, run.series[name], lw=1.4)
+            ax.set_xlabel(f"|{move}| (m: {measures[move].get('component', '')} displacement "
+                          f"of {target})")
+            ax.set_ylabel(f"{name} ({unit_of(measures[name])})")
+            ax.grid(alpha=0.3)
+        run.title(fig, f"load against displacement of {target}")
+        fig.tight_layout(rect=(0, 0, 1, 0.9))
+        run.save(fig, f"load_{target}.png")
+
+
+def plot_expansion(run):
+    measures = run.scene.get("measure", {})
+    for target, wall in run.scene.get("wall", {}).items():
+        if "radial_velocity" not in wall:
+            continue
+        forces = series_of(run, ("reaction", "wall_stress"), target)
+        if not forces or "time" not in run.series:
+            continue
+        centre = np.array(wall["centre"], dtype=float)
+        a0 = float(np.mean([np.linalg.norm(np.array(p) - centre) for p in wall["points"]]))
+        ratio = np.array([(a0 + schedule_integral(wall["radial_velocity"], t)) / a0
+                          for t in run.series["time"]])
+        fig, axes = plt.subplots(1, len(forces), figsize=(5.0 * len(forces), 4.0), squeeze=False)
+        for ax, name in zip(axes[0], forces):
+            ax.plot(ratio, run.series[name], lw=1.4)
+            ax.set_xlabel(f"a / a0 ({target}, a0 = {a0:.4g} m)")
+            ax.set_ylabel(f"{name} ({unit_of(measures[name])})")
+            ax.grid(alpha=0.3)
+        run.title(fig, f"expansion of {target}")
+        fig.tight_layout(rect=(0, 0, 1, 0.9))
+        run.save(fig, f"expansion_{target}.png")
+
+
+def plot_collapse(run):
+    if "time" not in run.series:
+        return
+    for body in run.scene.get("body", {}):
+        fronts = series_of(run, ("front",), body)
+        heights = series_of(run, ("height",), body)
+        if not fronts and not heights:
+            continue
+        fig, axes = plt.subplots(1, 2, figsize=(9.0, 3.8), squeeze=False)
+        t = run.series["time"]
+        references = run.scene.get("reference", {})
+        for ax, names, what in ((axes[0][0], fronts, "run-out"), (axes[0][1], heights, "height")):
+            for name in names:
+                ax.plot(t, run.series[name], lw=1.4, label=name)
+                if name in references:
+                    ax.axhline(float(references[name]["value"]), color="k", ls="--", lw=0.8,
+                               label=f"{name} reference")
+            ax.set_xlabel("time (s)")
+            ax.set_ylabel(f"{what} (m)")
+            ax.grid(alpha=0.3)
+            if names:
+                ax.legend(fontsize=8)
+        run.title(fig, f"collapse of {body}")
+        fig.tight_layout(rect=(0, 0, 1, 0.88))
+        run.save(fig, f"collapse_{body}.png")
+
+
+def plot_snapshots(run, field):
+    if not run.frames:
+        return
+    picks = sorted({0, len(run.frames) // 2, len(run.frames) - 1})
+    groups = [run.h5["frames"][run.frames[k]] for k in picks]
+    if field not in groups[0]:
+        n = groups[0]["position"].shape[0]
+        available = [k for k in groups[0] if groups[0][k].shape == (n,) and k != "vertices"]
+        raise SystemExit(f"run.py: no field '{field}' in the frames; one of {', '.join(available)}")
+    values = [g[field][()] for g in groups]
+    finite = np.concatenate([v[np.isfinite(v)] for v in values]) if values else np.array([])
+    lo, hi = (np.percentile(finite, 1), np.percentile(finite, 99)) if finite.size else (0, 1)
+    if hi <= lo:
+        hi = lo + 1.0
+    spacing = float(run.h5["meta"].attrs["spacing"])
+    everything = np.concatenate([g["position"][:, :2] for g in groups] +
+                                [g["boundary_points"][:, :2] for g in groups
+                                 if "boundary_points" in g])
+    xmin, ymin = everything.min(axis=0) - spacing
+    xmax, ymax = everything.max(axis=0) + spacing
+    aspect = min(max((ymax - ymin) / max(xmax - xmin, 1e-12), 0.25), 2.0)
+    panel = 4.0
+    fig, axes = plt.subplots(1, len(groups), figsize=(panel * len(groups) + 1.2,
+                                                      panel * aspect + 1.3),
+                             squeeze=False, layout="constrained")
+    fig.canvas.draw()  # lay out first: the marker size needs the axes' size
+    for ax, g in zip(axes[0], groups):
+        x = g["position"][:, :2]
+        # One square marker per particle, the size of its cell (dp in points on this axis).
+        ax.set_xlim(xmin, xmax)
+        points_per_metre = ax.get_window_extent().width / (xmax - xmin) * 72 / fig.dpi
+        size = max((spacing * points_per_metre) ** 2, 0.25)
+        art = ax.scatter(x[:, 0], x[:, 1], c=g[field][()], s=size, marker="s", cmap="viridis",
+                         vmin=lo, vmax=hi, linewidths=0)
+        if "boundary_points" in g:
+            p = g["boundary_points"][:, :2]
+            segments = [[p[a], p[b]] for a, b in g["boundary_segments"][()]]
+            ax.add_collection(LineCollection(segments, colors="k", linewidths=1.6))
+        ax.set_xlim(xmin, xmax)
+        ax.set_ylim(ymin, ymax)
+        ax.set_aspect("equal")
+        ax.set_title(f"t = {float(g.attrs['time']):.4g} s", fontsize=9)
+        ax.set_xlabel("x (m)")
+    axes[0][0].set_ylabel("y (m)")
+    unit = FIELD_UNITS.get(field)
+    fig.colorbar(art, ax=list(axes[0]), shrink=0.9, label=f"{field} ({unit})" if unit else field)
+    run.title(fig, f"{field}")
+    run.save(fig, f"snapshots_{field}.png")
+
+
+def main():
+    if len(sys.argv) < 2:
+        raise SystemExit(__doc__)
+    run = Run(sys.argv[1])
+    field = sys.argv[2] if len(sys.argv) > 2 else "von_mises"
+    plot_series(run)
+    plot_load_displacement(run)
+    plot_expansion(run)
+    plot_collapse(run)
+    plot_snapshots(run, field)
+    for path in run.written:
+        print(path)
+
+
+main()
