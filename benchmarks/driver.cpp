@@ -236,9 +236,10 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   metrics["diagnostics"] = solver->diagnostics();
   metrics["kinetic_energy"] = energy.to_json();
   metrics["energy_input"] = budget.to_json();
-  const std::vector<std::string> warnings = status == "completed"
-                                                ? run_warnings(scene, method, energy, budget, time)
-                                                : std::vector<std::string>{};
+  const std::vector<std::string> warnings =
+      status == "completed" ? run_warnings(scene, method, energy, budget, time,
+                                           metrics["diagnostics"], particles.size())
+                            : std::vector<std::string>{};
   Json warning_list = Json::array();
   for (const std::string& w : warnings) {
     warning_list.push_back(w);

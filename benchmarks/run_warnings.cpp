@@ -1,5 +1,6 @@
 #include "benchmarks/run_warnings.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "common/geometry.hpp"
@@ -19,11 +20,95 @@ bool driven_at(const Scene& scene, double time) {
   return false;
 }
 
+/// A number of the diagnostics at a dotted path ("newton.cuts"); NaN when absent.
+double diagnostic(const Json& diagnostics, const std::string& path) {
+  const Json* node = &diagnostics;
+  std::size_t start = 0;
+  while (node) {
+    const std::size_t dot = path.find('.', start);
+    node = node->is_object() ? node->find(path.substr(start, dot - start)) : nullptr;
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return node && node->is_number() ? node->number() : std::nan("");
+}
+
+/// Energy must be conserved: every material linear-elastic, nothing puts energy in or takes it
+/// out (gravity, loads, moving walls or rigid bodies, damping).
+bool conservative(const Scene& scene) {
+  for (const Material& m : scene.materials) {
+    if (m.model != "linear-elastic") return false;
+  }
+  if (scene.gravity != Vec2::Zero() || !scene.loads.empty()) return false;
+  for (const Wall& w : scene.walls) {
+    if (w.radial || !w.velocity.empty()) return false;
+  }
+  for (const RigidBody& rb : scene.rigid_bodies) {
+    if (!rb.velocity.empty()) return false;
+  }
+  return scene.spfem.damping == 0.0 && scene.spfem.local_damping == 0.0;
+}
+
+void add_diagnostic_warnings(const Scene& scene, const Json& diagnostics, std::size_t particles,
+                             std::vector<std::string>& out) {
+  char text[400];
+  const double n = static_cast<double>(particles);
+  if (const double most = diagnostic(diagnostics, "penetrations_max"); most > 0.0) {
+    std::snprintf(text, sizeof text,
+                  "penetrations: up to %.0f particles (%.2g %%) were inside a wall or rigid body "
+                  "at once (%.0f at the last step, %.0f particle-steps in all); forces on those "
+                  "boundaries are off. Try more sph.dummy_layers, a smaller sph.cfl or a finer "
+                  "spacing",
+                  most, 100.0 * most / n, diagnostic(diagnostics, "penetrations_last_step"),
+                  diagnostic(diagnostics, "penetrations_total"));
+    out.emplace_back(text);
+  }
+  if (const double isolated = diagnostic(diagnostics, "isolated_nodes_max"); isolated > 0.05 * n) {
+    std::snprintf(text, sizeof text,
+                  "isolated nodes: up to %.0f nodes (%.2g %%) belonged to no triangle of the mesh "
+                  "at once; they move without stress. Try a larger spfem.alpha_factor (now %g)",
+                  isolated, 100.0 * isolated / n, scene.spfem.alpha_factor);
+    out.emplace_back(text);
+  }
+  if (const double drift = diagnostic(diagnostics, "energy_drift_max");
+      drift > 0.02 && conservative(scene)) {
+    std::snprintf(text, sizeof text,
+                  "energy drift: the total energy of this conservative run drifted by up to %.3g "
+                  "%% of its value after the first step. Try a smaller spfem.time_step_safety "
+                  "(now %g)",
+                  100.0 * drift, scene.spfem.time_step_safety);
+    out.emplace_back(text);
+  }
+  const double limited = diagnostic(diagnostics, "stress_limited_steps");
+  const double steps = diagnostic(diagnostics, "steps");
+  if (limited > 0.1 * steps) {
+    std::snprintf(
+        text, sizeof text,
+        "safeguard: %.0f of %.0f steps (%.0f %%) were shortened by "
+        "spfem.stress_increment_limit = %g (a stiffening model near zero stress); the run "
+        "took more steps than its critical step needs. Raising the limit is faster and "
+        "less safe",
+        limited, steps, 100.0 * limited / steps, scene.spfem.stress_increment_limit);
+    out.emplace_back(text);
+  }
+  const double cuts = diagnostic(diagnostics, "newton.cuts");
+  const double increments = diagnostic(diagnostics, "newton.increments");
+  if (cuts > 0.1 * increments) {
+    std::snprintf(text, sizeof text,
+                  "safeguard: Newton failed and the increment was halved %.0f times in %.0f "
+                  "increments; the load path was followed in smaller steps than asked. Try a "
+                  "smaller spfem.implicit.increment or more load_steps",
+                  cuts, increments);
+    out.emplace_back(text);
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> run_warnings(const Scene& scene, const MethodInfo& method,
                                       const KineticEnergyRecord& energy, const EnergyBudget& budget,
-                                      double end_time) {
+                                      double end_time, const Json& diagnostics,
+                                      std::size_t particles) {
   std::vector<std::string> out;
   char text[400];
   const bool settling =
@@ -47,6 +132,7 @@ std::vector<std::string> run_warnings(const Scene& scene, const MethodInfo& meth
                   scene.checks.kinetic_energy_factor);
     out.emplace_back(text);
   }
+  add_diagnostic_warnings(scene, diagnostics, particles, out);
   return out;
 }
 

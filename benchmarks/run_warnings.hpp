@@ -17,8 +17,17 @@ namespace duet {
 ///   energy put in;
 /// - close to the energy check: the kinetic energy reached more than 1.2 times the energy put in
 ///   (the check fails a run at kinetic_energy_factor, 2 by default).
+/// From the method's diagnostics (the keys named), when it reports them:
+/// - penetrations (penetrations_max > 0): particles inside a wall or rigid body;
+/// - isolated nodes (isolated_nodes_max > 5 % of the particles): nodes in no triangle of the
+///   SPFEM mesh, which move without stress;
+/// - energy drift of the explicit step (energy_drift_max > 2 %) where the energy must be
+///   conserved: linear-elastic materials, no gravity, loads, moving walls or damping;
+/// - steps limited by a safeguard: more than 10 % of the steps cut by the stress increment limit
+///   (stress_limited_steps of steps), or of the increments halved (newton.cuts of increments).
 std::vector<std::string> run_warnings(const Scene& scene, const MethodInfo& method,
                                       const KineticEnergyRecord& energy, const EnergyBudget& budget,
-                                      double end_time);
+                                      double end_time, const Json& diagnostics,
+                                      std::size_t particles);
 
 }  // namespace duet

@@ -1,0 +1,113 @@
+// The end-of-run warnings read from a method's diagnostics: each fires above its threshold and
+// not at it, and the energy drift only where the energy must be conserved.
+#include "benchmarks/run_warnings.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "benchmarks/methods.hpp"
+#include "benchmarks/scene_input.hpp"
+#include "tests/benchmarks/child_run.hpp"
+
+namespace duet {
+namespace {
+
+// Linear-elastic, no gravity, a fixed floor: its energy must be conserved.
+const char* kElasticBlock = R"(
+spacing = 0.1
+[time]
+end_time = 1.0
+[material.steel]
+model = "linear-elastic"
+density = 7800.0
+E = 2e11
+nu = 0.3
+[body.block]
+material = "steel"
+min = [0.0, 0.0]
+max = [1.0, 1.0]
+initial_velocity = [1.0, 0.0]
+[wall.floor]
+points = [[-1.0, 0.0], [2.0, 0.0]]
+)";
+
+std::vector<std::string> warnings_for(const Json& diagnostics,
+                                      const std::vector<std::string>& overrides = {}) {
+  const Scene scene = load_scene_checked_from_string(kElasticBlock, "block.toml", overrides);
+  KineticEnergyRecord energy;  // never moved: no kinetic energy warning
+  const EnergyBudget budget(scene, Particles{}, 0.0);
+  return run_warnings(scene, builtin_methods().find("espfem"), energy, budget, 1.0, diagnostics,
+                      100);
+}
+
+Json with(const std::string& key, double value) {
+  Json j = Json::object();
+  j[key] = value;
+  return j;
+}
+
+bool says(const std::vector<std::string>& warnings, const std::string& start) {
+  for (const std::string& w : warnings) {
+    if (w.rfind(start, 0) == 0) return true;
+  }
+  return false;
+}
+
+TEST(RunWarnings, AnyPenetrationIsReported) {
+  Json d = with("penetrations_max", 3.0);
+  d["penetrations_last_step"] = 1.0;
+  d["penetrations_total"] = 250.0;
+  const auto w = warnings_for(d);
+  ASSERT_TRUE(says(w, "penetrations: up to 3 particles (3 %)")) << (w.empty() ? "" : w[0]);
+  EXPECT_NE(w[0].find("250 particle-steps"), std::string::npos) << w[0];
+  EXPECT_TRUE(warnings_for(with("penetrations_max", 0.0)).empty());
+}
+
+TEST(RunWarnings, IsolatedNodesAboveFivePercent) {
+  EXPECT_TRUE(says(warnings_for(with("isolated_nodes_max", 6.0)), "isolated nodes: up to 6"));
+  EXPECT_TRUE(warnings_for(with("isolated_nodes_max", 5.0)).empty());
+}
+
+TEST(RunWarnings, EnergyDriftOnlyWhereEnergyIsConserved) {
+  EXPECT_TRUE(says(warnings_for(with("energy_drift_max", 0.03)), "energy drift: "));
+  EXPECT_TRUE(warnings_for(with("energy_drift_max", 0.02)).empty());
+  // Gravity works on the block, damping takes energy out: a drift says nothing.
+  EXPECT_TRUE(warnings_for(with("energy_drift_max", 0.5), {"gravity=[0.0, -9.81]"}).empty());
+  EXPECT_TRUE(warnings_for(with("energy_drift_max", 0.5), {"spfem.damping=1.0"}).empty());
+}
+
+TEST(RunWarnings, StepsCutBySafeguards) {
+  Json limited = with("steps", 100.0);
+  limited["stress_limited_steps"] = 11.0;
+  EXPECT_TRUE(says(warnings_for(limited), "safeguard: 11 of 100 steps"));
+  limited["stress_limited_steps"] = 10.0;
+  EXPECT_TRUE(warnings_for(limited).empty());
+
+  Json newton = Json::object();
+  newton["newton"] = with("increments", 40.0);
+  newton["newton"]["cuts"] = 5.0;
+  EXPECT_TRUE(says(warnings_for(newton), "safeguard: Newton failed"));
+  newton["newton"]["cuts"] = 4.0;
+  EXPECT_TRUE(warnings_for(newton).empty());
+}
+
+TEST(RunWarnings, SaidOnTheTerminalAndInMetrics) {
+  // The rough footing through SPH at a coarse spacing: the soil under its corner ends inside it
+  // (benchmarks/RESULTS.md, footing through SPH); the run completes and says so.
+  const std::string out = (std::filesystem::temp_directory_path() / "duet-warn-footing").string();
+  const test::DuetResult r =
+      test::run_duet("run '" + std::string(DUET_SOURCE_DIR) +
+                     "/benchmarks/scenes/footing.toml' --method sph --spacing 0.25 --quiet "
+                     "--no-plots --out '" +
+                     out + "'");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("duet: warning: penetrations: up to 4 particles"), std::string::npos)
+      << r.output;
+  EXPECT_NE(test::read_text(out + "/metrics.json").find("\"penetrations: up to 4 particles"),
+            std::string::npos);
+  std::filesystem::remove_all(out);
+}
+
+}  // namespace
+}  // namespace duet
