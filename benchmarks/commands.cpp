@@ -6,6 +6,7 @@
 
 #include "benchmarks/driver.hpp"
 #include "benchmarks/element_demo.hpp"
+#include "benchmarks/listing_commands.hpp"
 #include "benchmarks/methods.hpp"
 #include "benchmarks/plotting.hpp"
 #include "benchmarks/reports.hpp"
@@ -278,8 +279,10 @@ void add_stability_command(CLI::App& app, int& exit_code) {
       cells.push_back({grid[i], run_scene(scenes[i], method, options)});
     }
     write_stability_csv(out + "/stability.csv", cells);
-    plot("stability.py", {out + "/stability.csv", out + "/stability.png",
-                          scenes.front().name + " (" + method.name + ")"});
+    std::vector<std::string> chart = {out + "/stability.csv", out + "/stability.png",
+                                      scenes.front().name + " (" + method.name + ")"};
+    for (const auto& [key, value] : grid.front()) chart.push_back(key + "=" + scene_key_unit(key));
+    plot("stability.py", chart);
     std::cout << "results: " << out << '\n';
     exit_code = pending_interrupt() ? interrupted_exit_status(pending_interrupt()) : 0;
   });

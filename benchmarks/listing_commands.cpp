@@ -108,6 +108,44 @@ std::string models_listing(const std::string& model) {
   return out.str();
 }
 
+std::string scene_key_unit(const std::string& dotted) {
+  const auto segments_of = [](const std::string& text) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    for (std::size_t dot; (dot = text.find('.', start)) != std::string::npos; start = dot + 1)
+      out.push_back(text.substr(start, dot - start));
+    out.push_back(text.substr(start));
+    return out;
+  };
+  const std::vector<std::string> given = segments_of(dotted);
+  for (const SceneKey& k : scene_keys()) {
+    const std::vector<std::string> pattern =
+        segments_of(k.section.empty() ? k.key : k.section + "." + k.key);
+    if (pattern.size() != given.size()) continue;
+    bool match = true;
+    for (std::size_t i = 0; i < pattern.size() && match; ++i) {
+      match =
+          pattern[i] == given[i] || (pattern[i].starts_with("<") && pattern[i] != "<parameter>");
+    }
+    if (match) return k.unit;
+  }
+  // A model parameter: the unit the model that reads it gives.
+  if (given.size() == 3 && given[0] == "material") {
+    for (const auto& info : constitutive::builtin_models().models()) {
+      std::vector<std::map<std::string, ParameterValue>> forms = {info.example};
+      forms.insert(forms.end(), info.other_forms.begin(), info.other_forms.end());
+      for (const auto& form : forms) {
+        constitutive::Parameters parameters("", form);
+        info.make(parameters);
+        for (const auto& spec : parameters.specs()) {
+          if (spec.name == given[2] && !spec.unit.empty()) return spec.unit;
+        }
+      }
+    }
+  }
+  return "";
+}
+
 std::string methods_listing() {
   std::ostringstream out;
   std::vector<std::vector<std::string>> rows = {{"method", "kind", "options", "summary"}};

@@ -15,6 +15,10 @@ std::string keys_listing(const std::string& section);
 /// Every model (or one), its forms and parameters: name, kind, range, unit, default, meaning.
 std::string models_listing(const std::string& model);
 
+/// The unit of a dotted scene key ("sph.sound_speed" -> "m/s", "material.sand.phi" -> "deg",
+/// from the model that reads it); "" when unknown or unitless text.
+std::string scene_key_unit(const std::string& dotted);
+
 /// Every registered method with its summary, kind and option tables.
 std::string methods_listing();
 

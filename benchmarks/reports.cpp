@@ -92,10 +92,18 @@ void write_compare_csv(const std::string& path, const std::vector<RunSummary>& r
 std::string compare_markdown(const std::vector<RunSummary>& runs, double target) {
   const Columns c = columns_of(runs);
   std::ostringstream md;
+  // Every measure: the scored ones with their error, then the others (a run's value at its end,
+  // or the last value recorded for a series).
+  std::vector<std::string> unscored;
+  for (const auto& m : c.measures) {
+    if (!c.scored.count(m)) unscored.push_back(m);
+  }
   md << "| method | spacing (m) | particles | steps | wall (s) | status |";
   for (const auto& s : c.scored) md << ' ' << s << " | " << s << " error |";
+  for (const auto& m : unscored) md << ' ' << m << " |";
   md << "\n|---|---|---|---|---|---|";
   for (std::size_t k = 0; k < c.scored.size(); ++k) md << "---|---|";
+  for (std::size_t k = 0; k < unscored.size(); ++k) md << "---|";
   md << '\n';
   for (const auto& r : runs) {
     md << "| " << r.method << " | " << format_number(r.spacing) << " | " << r.particles << " | "
@@ -113,6 +121,14 @@ std::string compare_markdown(const std::vector<RunSummary>& runs, double target)
                       it->second.reference);
         md << ' ' << value << " | " << error << " |";
       }
+    }
+    for (const auto& m : unscored) {
+      const auto it = r.measures.find(m);
+      char value[32] = "";
+      if (it != r.measures.end() && std::isfinite(it->second)) {
+        std::snprintf(value, sizeof value, "%.4g", it->second);
+      }
+      md << ' ' << value << " |";
     }
     md << '\n';
   }

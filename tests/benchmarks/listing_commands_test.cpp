@@ -242,6 +242,17 @@ TEST(MethodsListing, ListsEveryRegisteredMethodWithItsOptionTables) {
   }
 }
 
+TEST(SceneKeyUnit, FromTheSchemaOrTheModel) {
+  EXPECT_EQ(scene_key_unit("sph.sound_speed"), "m/s");
+  EXPECT_EQ(scene_key_unit("spfem.implicit.increment"), "s");
+  EXPECT_EQ(scene_key_unit("wall.base.velocity"), "s, m/s");
+  EXPECT_EQ(scene_key_unit("spacing"), "m");
+  EXPECT_EQ(scene_key_unit("material.sand.phi"), "deg");
+  EXPECT_EQ(scene_key_unit("material.clay.cu"), "Pa");
+  EXPECT_EQ(scene_key_unit("material.clay.density"), "kg/m^3");
+  EXPECT_EQ(scene_key_unit("sph.no_such_key"), "");
+}
+
 TEST(ListingCommands, RunFromTheCommandLine) {
   const test::DuetResult keys = test::run_duet("keys spfem.implicit");
   EXPECT_EQ(keys.status, 0) << keys.output;

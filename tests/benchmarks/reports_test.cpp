@@ -56,6 +56,14 @@ TEST(TargetChoice, FailedRunNeverMeetsTarget) {
   EXPECT_FALSE(choices[0].run.has_value());
 }
 
+TEST(CompareMarkdown, ListsEveryMeasureScoredOrNot) {
+  RunSummary r = make_run("sph", 0.005, 0.1, 2.0);
+  r.measures["height"] = 0.0973;
+  const std::string md = compare_markdown({r}, 0.0);
+  EXPECT_NE(md.find("| runout | runout error | height |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0.0973 |"), std::string::npos) << md;
+}
+
 TEST(CompareCsv, FailedRunsAppearWithTheirReason) {
   const auto dir = std::filesystem::temp_directory_path() / "duet_reports_test";
   std::filesystem::create_directories(dir);

@@ -1,0 +1,103 @@
+// Every chart script drawn from a small fixture (tests/data/charts/): the PNG exists and has the
+// size its layout gives, failed runs' reasons listed under the chart make it taller, and nothing
+// is printed (no library warning reaches the terminal). Looked at by eye when they change:
+// benchmarks/RESULTS.md "Charts".
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "benchmarks/plotting.hpp"
+
+namespace duet {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PngSize {
+  std::uint32_t width = 0, height = 0;
+};
+
+PngSize png_size(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char h[24] = {};
+  in.read(reinterpret_cast<char*>(h), sizeof h);
+  if (!in || h[1] != 'P' || h[2] != 'N' || h[3] != 'G') return {};
+  const auto word = [&](int at) {
+    return std::uint32_t(h[at]) << 24 | std::uint32_t(h[at + 1]) << 16 |
+           std::uint32_t(h[at + 2]) << 8 | std::uint32_t(h[at + 3]);
+  };
+  return {word(16), word(20)};
+}
+
+/// Runs a chart script with Debian's python, returning what it printed.
+std::string draw(const std::string& script, const std::vector<std::string>& arguments) {
+  std::string command =
+      plotting_python() + " '" + DUET_SOURCE_DIR + "/benchmarks/plot/" + script + "'";
+  for (const std::string& a : arguments) command += " '" + a + "'";
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  while (pipe && std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pipe ? pclose(pipe) : -1;
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << output;
+  return output;
+}
+
+const std::string kFixtures = std::string(DUET_SOURCE_DIR) + "/tests/data/charts/";
+
+class Charts : public testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_FALSE(plotting_python().empty()) << "no python3 with matplotlib";
+    out_ = fs::temp_directory_path() / "duet-charts";
+    fs::create_directories(out_);
+  }
+  void TearDown() override { fs::remove_all(out_); }
+  fs::path out_;
+};
+
+TEST_F(Charts, CompareWithScoredErrorAndFailedRuns) {
+  const fs::path png = out_ / "compare.png";
+  EXPECT_EQ(draw("compare.py", {kFixtures + "compare-scored.csv", png.string(), "collapse"}), "");
+  const PngSize size = png_size(png);
+  // 7 x 5.2 in at 120 dpi
+  EXPECT_NEAR(size.width, 840, 1);   // matplotlib rounds down
+  EXPECT_NEAR(size.height, 624, 1);  // matplotlib rounds down
+}
+
+TEST_F(Charts, CompareWithoutScoredMeasureDrawsEachMeasure) {
+  const fs::path png = out_ / "compare.png";
+  EXPECT_EQ(draw("compare.py", {kFixtures + "compare-unscored.csv", png.string(), "collapse"}), "");
+  const PngSize size = png_size(png);
+  // two measures: 9 x (2 x 2.8 + 0.8) in at 120 dpi
+  EXPECT_NEAR(size.width, 1080, 1);  // matplotlib rounds down
+  EXPECT_NEAR(size.height, 768, 1);  // matplotlib rounds down
+}
+
+TEST_F(Charts, StabilityGrowsToListLongReasons) {
+  const fs::path png = out_ / "stability.png";
+  EXPECT_EQ(draw("stability.py", {kFixtures + "stability.csv", png.string(), "collapse (sph)",
+                                  "sph.cfl=-", "sph.alpha=-"}),
+            "");
+  const PngSize size = png_size(png);
+  // 3 x 2 cells: (1.9 x 3 + 2.6) x (1.15 x 2 + 2.2) in, plus the two lines of the long reason
+  EXPECT_NEAR(size.width, 996, 1);  // matplotlib rounds down
+  EXPECT_GT(size.height, 540u);
+  EXPECT_LT(size.height, 640u);
+}
+
+TEST_F(Charts, ElementChart) {
+  const fs::path png = out_ / "element.png";
+  EXPECT_EQ(draw("element.py", {kFixtures + "element.csv", png.string(), "drucker-prager"}), "");
+  const PngSize size = png_size(png);
+  EXPECT_GT(size.width, 600u);
+  EXPECT_GT(size.height, 300u);
+}
+
+}  // namespace
+}  // namespace duet
