@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <thread>
 
 #include "benchmarks/driver.hpp"
 #include "benchmarks/element_demo.hpp"
@@ -10,6 +11,7 @@
 #include "benchmarks/methods.hpp"
 #include "benchmarks/plotting.hpp"
 #include "benchmarks/reports.hpp"
+#include "benchmarks/run_grid.hpp"
 #include "benchmarks/scene_input.hpp"
 #include "common/input_error.hpp"
 #include "common/interrupt.hpp"
@@ -157,6 +159,8 @@ struct CompareArgs {
   double target = 0.0;
   std::vector<std::string> sets;
   std::string out;
+  std::string emit_jobs;
+  int jobs = 1;
 };
 
 }  // namespace
@@ -171,6 +175,13 @@ void add_compare_command(CLI::App& app, int& exit_code) {
                   "report per method the coarsest spacing whose errors are all below this");
   cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
   cmd->add_option("--out", args->out, "output folder (default runs/compare-<scene>)");
+  cmd->add_option("--emit-jobs", args->emit_jobs,
+                  "write one self-contained duet run command per run into this file and run "
+                  "nothing (GNU parallel, a Slurm array); then duet collect OUT");
+  cmd->add_option("--jobs", args->jobs,
+                  "runs at once as child processes (default 1: wall times are the measured cost, "
+                  "and runs side by side slow each other)")
+      ->check(CLI::PositiveNumber);
   cmd->callback([args, &exit_code] {
     // Everything is checked before any run starts.
     const Scene base = load_scene_checked(args->scene, args->sets);
@@ -192,20 +203,32 @@ void add_compare_command(CLI::App& app, int& exit_code) {
 
     const std::string out = args->out.empty() ? "runs/compare-" + base.name : args->out;
     prepare_output_folder(out);
-    std::vector<RunSummary> runs;
+    Grid grid;
+    grid.kind = "compare";
+    grid.scene_file = std::filesystem::absolute(args->scene).lexically_normal().string();
+    grid.scene_name = base.name;
+    grid.title = base.name;
+    grid.target = args->target;
     for (const MethodInfo* method : methods) {
       for (const Scene& scene : scenes) {
-        if (pending_interrupt()) break;
-        RunOptions options;
-        options.out_dir = out + "/" + method->name + "-dp" + format_number(scene.spacing);
-        std::cerr << "duet: " << method->name << " at spacing " << scene.spacing << " m\n";
-        runs.push_back(run_scene(scene, *method, options));
+        GridCell cell;
+        cell.method = method->name;
+        cell.settings = {{"method", method->name}, {"spacing", format_number(scene.spacing)}};
+        cell.overrides = with_spacing(args->sets, scene.spacing);
+        cell.dir = method->name + "-dp" + format_number(scene.spacing);
+        grid.cells.push_back(std::move(cell));
       }
     }
-    write_compare_csv(out + "/compare.csv", runs);
-    write_compare_markdown(out + "/compare.md", runs, args->target);
-    plot("compare.py", {out + "/compare.csv", out + "/compare.png", base.name});
-    std::cout << compare_markdown(runs, args->target) << "results: " << out << '\n';
+    write_grid(out, grid);
+    if (!args->emit_jobs.empty()) {
+      write_job_file(args->emit_jobs, grid, out);
+      std::cout << grid.cells.size() << " runs written to " << args->emit_jobs
+                << " (one duet run per line); when they have run: duet collect " << out << '\n';
+      exit_code = 0;
+      return;
+    }
+    run_grid(grid, out, args->jobs);
+    std::cout << write_grid_reports(grid, out) << "results: " << out << '\n';
     exit_code = pending_interrupt() ? interrupted_exit_status(pending_interrupt()) : 0;
   });
 }
@@ -218,6 +241,8 @@ struct StabilityArgs {
   std::vector<std::string> vary;
   std::vector<std::string> sets;
   std::string out;
+  std::string emit_jobs;
+  int jobs = 0;  // 0: one per core
 };
 
 /// Cartesian product of the varied keys' values.
@@ -255,11 +280,18 @@ void add_stability_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
   cmd->add_option("--out", args->out, "output folder (default runs/stability-<scene>-<method>)");
+  cmd->add_option("--emit-jobs", args->emit_jobs,
+                  "write one self-contained duet run command per cell into this file and run "
+                  "nothing (GNU parallel, a Slurm array); then duet collect OUT");
+  cmd->add_option("--jobs", args->jobs,
+                  "cells at once as child processes, one thread each (default: one per core; 1: "
+                  "in this process, one after another)")
+      ->check(CLI::NonNegativeNumber);
   cmd->callback([args, &exit_code] {
     const MethodInfo& method = builtin_methods().find(args->method);
-    const auto grid = grid_of(args->vary);
+    const auto cells_of = grid_of(args->vary);
     std::vector<Scene> scenes;  // every cell validated before any run
-    for (const auto& cell : grid) {
+    for (const auto& cell : cells_of) {
       std::vector<std::string> overrides = args->sets;
       for (const auto& [key, value] : cell) overrides.push_back(key + "=" + value);
       scenes.push_back(load_scene_checked(args->scene, overrides));
@@ -268,23 +300,51 @@ void add_stability_command(CLI::App& app, int& exit_code) {
     const std::string out =
         args->out.empty() ? "runs/stability-" + scenes.front().name + "-" + method.name : args->out;
     prepare_output_folder(out);
-    std::vector<StabilityCell> cells;
-    for (std::size_t i = 0; i < grid.size() && !pending_interrupt(); ++i) {
-      std::string name;
-      for (const auto& [key, value] : grid[i])
-        name += (name.empty() ? "" : "_") + key + "=" + value;
-      RunOptions options;
-      options.out_dir = out + "/" + name;
-      std::cerr << "duet: stability cell " << name << '\n';
-      cells.push_back({grid[i], run_scene(scenes[i], method, options)});
+    Grid grid;
+    grid.kind = "stability";
+    grid.scene_file = std::filesystem::absolute(args->scene).lexically_normal().string();
+    grid.scene_name = scenes.front().name;
+    grid.title = scenes.front().name + " (" + method.name + ")";
+    for (const auto& settings : cells_of) {
+      GridCell cell;
+      cell.method = method.name;
+      cell.settings = settings;
+      cell.overrides = args->sets;
+      for (const auto& [key, value] : settings) {
+        cell.overrides.push_back(key + "=" + value);
+        cell.dir += (cell.dir.empty() ? "" : "_") + key + "=" + value;
+      }
+      grid.cells.push_back(std::move(cell));
     }
-    write_stability_csv(out + "/stability.csv", cells);
-    std::vector<std::string> chart = {out + "/stability.csv", out + "/stability.png",
-                                      scenes.front().name + " (" + method.name + ")"};
-    for (const auto& [key, value] : grid.front()) chart.push_back(key + "=" + scene_key_unit(key));
-    plot("stability.py", chart);
-    std::cout << "results: " << out << '\n';
+    write_grid(out, grid);
+    if (!args->emit_jobs.empty()) {
+      write_job_file(args->emit_jobs, grid, out);
+      std::cout << grid.cells.size() << " cells written to " << args->emit_jobs
+                << " (one duet run per line); when they have run: duet collect " << out << '\n';
+      exit_code = 0;
+      return;
+    }
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    run_grid(grid, out, args->jobs > 0 ? args->jobs : cores);
+    std::cout << write_grid_reports(grid, out) << "results: " << out << '\n';
     exit_code = pending_interrupt() ? interrupted_exit_status(pending_interrupt()) : 0;
+  });
+}
+
+void add_collect_command(CLI::App& app, int& exit_code) {
+  auto dirs = std::make_shared<std::vector<std::string>>();
+  CLI::App* cmd = app.add_subcommand(
+      "collect",
+      "build stability.csv/png or compare.csv/md/png of a grid from its runs' metrics.json (a grid "
+      "run elsewhere from --emit-jobs, or one still running)");
+  cmd->add_option("grid_dir", *dirs, "the --out folder(s) of duet stability or compare")
+      ->required();
+  cmd->callback([dirs, &exit_code] {
+    for (const std::string& dir : *dirs) {
+      const Grid grid = read_grid(dir);
+      std::cout << write_grid_reports(grid, dir) << "results: " << dir << '\n';
+    }
+    exit_code = 0;
   });
 }
 

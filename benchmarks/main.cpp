@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   duet::add_check_command(app, exit_code);
   duet::add_demo_command(app, exit_code);
   duet::add_plot_command(app, exit_code);
+  duet::add_collect_command(app, exit_code);
   duet::add_listing_commands(app, exit_code);
   try {
     app.parse(argc, argv);

@@ -55,6 +55,9 @@ class Json {
   bool is_number() const { return std::holds_alternative<double>(value_); }
   bool is_string() const { return std::holds_alternative<std::string>(value_); }
   bool is_object() const { return std::holds_alternative<Object>(value_); }
+  bool is_array() const { return std::holds_alternative<Array>(value_); }
+  bool is_bool() const { return std::holds_alternative<bool>(value_); }
+  bool boolean() const { return std::get<bool>(value_); }
   double number() const { return std::get<double>(value_); }
   const std::string& string() const { return std::get<std::string>(value_); }
   const Object& members() const { return std::get<Object>(value_); }
@@ -67,6 +70,14 @@ class Json {
   void dump_to(std::string& out, int indent, int level) const;
   std::variant<std::monostate, bool, double, std::string, Object, Array> value_;
 };
+
+/// Parses JSON text (RFC 8259; what dump() writes and more). Throws std::runtime_error naming the
+/// offset and what was expected.
+Json parse_json(std::string_view text);
+
+/// Parses the file at `path`; throws std::runtime_error naming the path when it cannot be read or
+/// parsed.
+Json read_json(const std::string& path);
 
 /// Writes `value.dump()` to `path`; throws std::runtime_error when the file cannot be written.
 void write_json(const std::string& path, const Json& value);
