@@ -10,6 +10,7 @@
 #include "benchmarks/element_command.hpp"
 #include "benchmarks/git_commit.hpp"
 #include "benchmarks/listing_commands.hpp"
+#include "benchmarks/srf_command.hpp"
 #include "common/h5_writer.hpp"
 #include "common/input_error.hpp"
 #include "common/interrupt.hpp"
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   duet::add_demo_command(app, exit_code);
   duet::add_plot_command(app, exit_code);
   duet::add_collect_command(app, exit_code);
+  duet::add_srf_command(app, exit_code);
   duet::add_listing_commands(app, exit_code);
   try {
     app.parse(argc, argv);

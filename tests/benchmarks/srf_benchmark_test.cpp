@@ -1,0 +1,54 @@
+// `duet srf` on the coarse slope (Griffiths & Lane 1999 example 1, factor of safety about 1.38)
+// through SPH at dp = 1 m, bisected to 0.1: the search brackets the factor, writes its files,
+// and the bracket lies near the reference. Measured at this resolution: [1.2, 1.275] (5 trials,
+// about 10 s); the coarse slope fails early (benchmarks/RESULTS.md "Strength reduction").
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "common/json.hpp"
+#include "tests/benchmarks/child_run.hpp"
+
+namespace duet {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(SrfBenchmark, CoarseSlopeThroughSphBracketsItsFactorOfSafety) {
+  const fs::path out = fs::temp_directory_path() / "duet-srf-slope-sph";
+  fs::remove_all(out);
+  const test::DuetResult r = test::run_duet(
+      "srf '" + std::string(DUET_SOURCE_DIR) +
+      "/benchmarks/scenes/slope.toml' --method sph --spacing 1.0 --width 0.1 --out '" +
+      out.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Json result = read_json((out / "srf.json").string());
+  EXPECT_EQ(result.find("outcome")->string(), "bracketed");
+  const double stable = result.find("last_stable")->number();
+  const double failed = result.find("first_failed")->number();
+  EXPECT_LT(stable, failed);
+  EXPECT_LE(failed - stable, 0.1 + 1e-9);
+  // Within 0.25 of Griffiths & Lane's 1.38 at this coarse spacing (1.24 measured).
+  EXPECT_NEAR(0.5 * (stable + failed), 1.38, 0.25);
+  const std::string csv = test::read_text(out / "srf.csv");
+  EXPECT_EQ(static_cast<long>(std::count(csv.begin(), csv.end(), '\n')) - 1,
+            static_cast<long>(result.find("trials")->number()));
+  EXPECT_TRUE(fs::exists(out / "srf.png"));
+  EXPECT_TRUE(fs::exists(out / "srf.md"));
+  EXPECT_NE(r.output.find("factor of safety of slope through sph: between"), std::string::npos)
+      << r.output;
+  fs::remove_all(out);
+}
+
+TEST(SrfBenchmark, ASceneWithoutADisplacementSeriesIsRefused) {
+  const test::DuetResult r = test::run_duet("srf '" + std::string(DUET_SOURCE_DIR) +
+                                            "/benchmarks/scenes/footing.toml' --method sph");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("max_displacement"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace duet
