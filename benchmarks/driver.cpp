@@ -105,7 +105,13 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   Particles particles = sample_bodies(scene);
   initialise_material_points(scene, particles);
   std::unique_ptr<Solver> solver = method.make(scene);
-  solver->initialise(scene, particles);
+  std::optional<Failure> failure;
+  try {
+    // Gravity loading happens here (ispfem's increments, espfem's damped steps): it can fail.
+    solver->initialise(scene, particles);
+  } catch (const NumericalFailure& e) {
+    failure = Failure{std::string("before the clock started: ") + e.what(), 0.0, e.particle()};
+  }
 
   RunWriter writer(options.out_dir);
   std::vector<std::string> boundary_names;
@@ -125,7 +131,6 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   const double sample_interval = output_interval / 10.0;
   double time = 0.0;
   long steps = 0;
-  std::optional<Failure> failure;
   int interrupted_by = 0;  // the signal that ended the run, or 0
   bool output_failed = false;
   std::vector<Vec2> previous_position = particles.position;

@@ -21,12 +21,17 @@ struct BallisticOptions {
   long nan_at_step = -1;    // write a NaN stress at this step
   long boost_at_step = -1;  // multiply every velocity by `boost` at this step (made energy)
   double boost = 1.0;
+  bool throw_in_initialise = false;  // gravity loading that does not converge
 };
 
 class BallisticSolver final : public Solver {
  public:
   explicit BallisticSolver(BallisticOptions options) : options_(options) {}
-  void initialise(const Scene&, Particles&) override {}
+  void initialise(const Scene&, Particles&) override {
+    if (options_.throw_in_initialise) {
+      throw NumericalFailure("gravity loading did not converge at gravity factor 0.9");
+    }
+  }
   double step(const Scene&, Particles& particles, double) override {
     ++steps_;
     if (steps_ == options_.throw_at_step) throw NumericalFailure("Newton did not converge", 7);
@@ -161,6 +166,22 @@ TEST(Driver, SolverNumericalFailureIsReportedWithItsReason) {
   EXPECT_EQ(summary.failure_reason, "Newton did not converge");
   EXPECT_NEAR(summary.failure_time, 0.11, 1e-9);
   EXPECT_EQ(summary.steps, 11);
+}
+
+TEST(Driver, FailureBeforeTheClockStartsIsAFailedRunWithItsFrameAndMetrics) {
+  // Gravity loading that does not converge (ispfem's settle threw out of initialise and ended the
+  // program with exit 1, and a strength-reduction search with it).
+  const Scene scene = load_scene_from_string(kScene, "moving-block.toml");
+  RunOptions options{out_dir("initialise"), false};
+  const RunSummary summary = run_scene(scene, ballistic({.throw_in_initialise = true}), options);
+  EXPECT_EQ(summary.status, "failed");
+  EXPECT_EQ(summary.failure_reason,
+            "before the clock started: gravity loading did not converge at gravity factor 0.9");
+  EXPECT_EQ(summary.failure_time, 0.0);
+  EXPECT_EQ(summary.steps, 0);
+  EXPECT_EQ(count_frames(options.out_dir + "/run.h5"), 1u);
+  EXPECT_NE(read_text(options.out_dir + "/metrics.json").find("\"status\": \"failed\""),
+            std::string::npos);
 }
 
 // The block carries 0.5 * 5 kg/m * (0.1 m/s)^2 = 0.025 J/m and nothing does work on it, so the
