@@ -12,6 +12,13 @@ namespace duet {
 
 namespace {
 
+bool imports_matplotlib(const std::string& python) {
+  const std::string command = shell_quote(python) + " -c 'import matplotlib' >/dev/null 2>&1";
+  return std::system(command.c_str()) == 0;
+}
+
+}  // namespace
+
 std::string shell_quote(const std::string& s) {
   std::string out = "'";
   for (char c : s) {
@@ -22,13 +29,6 @@ std::string shell_quote(const std::string& s) {
   }
   return out + "'";
 }
-
-bool imports_matplotlib(const std::string& python) {
-  const std::string command = shell_quote(python) + " -c 'import matplotlib' >/dev/null 2>&1";
-  return std::system(command.c_str()) == 0;
-}
-
-}  // namespace
 
 std::string plotting_python() {
   static const std::string found = [] {

@@ -7,6 +7,9 @@
 
 namespace duet {
 
+/// `s` as one word for /bin/sh: in single quotes, each ' written as '\''.
+std::string shell_quote(const std::string& s);
+
 /// Path of a Python interpreter that imports matplotlib, or "" when none does.
 std::string plotting_python();
 

@@ -3,15 +3,14 @@
 // is printed (no library warning reaches the terminal). Looked at by eye when they change:
 // benchmarks/RESULTS.md "Charts".
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "benchmarks/plotting.hpp"
+#include "tests/benchmarks/child_run.hpp"
 
 namespace duet {
 namespace {
@@ -23,15 +22,8 @@ struct PngSize {
 };
 
 PngSize png_size(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char h[24] = {};
-  in.read(reinterpret_cast<char*>(h), sizeof h);
-  if (!in || h[1] != 'P' || h[2] != 'N' || h[3] != 'G') return {};
-  const auto word = [&](int at) {
-    return std::uint32_t(h[at]) << 24 | std::uint32_t(h[at + 1]) << 16 |
-           std::uint32_t(h[at + 2]) << 8 | std::uint32_t(h[at + 3]);
-  };
-  return {word(16), word(20)};
+  const auto [width, height] = test::png_size(path);
+  return {width, height};
 }
 
 /// Runs a chart script with Debian's python, returning what it printed.
@@ -39,12 +31,9 @@ std::string draw(const std::string& script, const std::vector<std::string>& argu
   std::string command =
       plotting_python() + " '" + DUET_SOURCE_DIR + "/benchmarks/plot/" + script + "'";
   for (const std::string& a : arguments) command += " '" + a + "'";
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string output;
-  char buffer[4096];
-  while (pipe && std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pipe ? pclose(pipe) : -1;
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << output;
+  const test::DuetResult r = test::run_command(command);
+  EXPECT_EQ(r.status, 0) << command << "\n" << r.output;
+  const std::string output = r.output;
   return output;
 }
 

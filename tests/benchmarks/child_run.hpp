@@ -7,7 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +17,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace duet::test {
@@ -31,9 +34,9 @@ struct DuetResult {
   std::string output;  // stdout and stderr
 };
 
-/// Runs `duet ARGUMENTS` (a shell word list) to its end.
-inline DuetResult run_duet(const std::string& arguments) {
-  const std::string command = std::string("'") + DUET_BINARY + "' " + arguments + " 2>&1";
+/// Runs a shell command to its end, stdout and stderr captured.
+inline DuetResult run_command(const std::string& shell_command) {
+  const std::string command = shell_command + " 2>&1";
   DuetResult r;
   FILE* pipe = popen(command.c_str(), "r");
   char buffer[4096];
@@ -41,6 +44,25 @@ inline DuetResult run_duet(const std::string& arguments) {
   const int raw = pclose(pipe);
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return r;
+}
+
+/// Runs `duet ARGUMENTS` (a shell word list) to its end.
+inline DuetResult run_duet(const std::string& arguments) {
+  return run_command(std::string("'") + DUET_BINARY + "' " + arguments);
+}
+
+/// Width and height of a PNG from its IHDR chunk; {0, 0} when the file is not a PNG.
+inline std::pair<std::uint32_t, std::uint32_t> png_size(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char h[24] = {};
+  in.read(reinterpret_cast<char*>(h), sizeof h);
+  const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (!in || !std::equal(signature, signature + 8, h)) return {0, 0};
+  const auto word = [&](int at) {
+    return std::uint32_t(h[at]) << 24 | std::uint32_t(h[at + 1]) << 16 |
+           std::uint32_t(h[at + 2]) << 8 | std::uint32_t(h[at + 3]);
+  };
+  return {word(16), word(20)};
 }
 
 /// `duet run` on the sand collapse through SPH with `arguments` after the scene, stdout and stderr

@@ -20,18 +20,9 @@ struct PngSize {
   std::uint32_t width = 0, height = 0;
 };
 
-/// Width and height from the IHDR chunk; zero when the file is not a PNG.
 PngSize png_size(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char header[24] = {};
-  in.read(reinterpret_cast<char*>(header), sizeof header);
-  const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (!in || !std::equal(signature, signature + 8, header)) return {};
-  const auto big_endian = [&](int at) {
-    return std::uint32_t(header[at]) << 24 | std::uint32_t(header[at + 1]) << 16 |
-           std::uint32_t(header[at + 2]) << 8 | std::uint32_t(header[at + 3]);
-  };
-  return {big_endian(16), big_endian(20)};
+  const auto [width, height] = test::png_size(path);
+  return {width, height};
 }
 
 void expect_chart(const fs::path& path, std::uint32_t min_width, std::uint32_t min_height) {

@@ -2,9 +2,7 @@
 // and for SPFEM the mesh) opened with ParaView's own XDMF reader by pvbatch, every time step
 // checked against run.h5 and the footing's schedule (tests/benchmarks/paraview_read_check.py).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -35,13 +33,9 @@ TEST_P(XdmfInParaView, ShowsParticlesBoundariesAndMeshAtEveryFrame) {
       std::string(DUET_SOURCE_DIR) + "/tests/benchmarks/paraview_read_check.py";
   // pvbatch: ParaView's batch Python, installed by `./duet test`.
   const std::string command = "pvbatch '" + script + "' '" + out.string() + "' " + c.kind;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << output;
+  const test::DuetResult check = test::run_command(command);
+  const std::string& output = check.output;
+  EXPECT_EQ(check.status, 0) << command << "\n" << output;
   EXPECT_NE(output.find("ok: 5 time steps, 4 boundaries"), std::string::npos) << output;
   fs::remove_all(out);
 }
