@@ -55,7 +55,7 @@ void write_reports(const std::string& out, const SrfArgs& args, const Scene& sce
     std::ofstream csv(out + "/srf.csv");
     csv << "factor,verdict,reason,final_max_displacement,window_increase,wall_seconds,dir\n";
     for (const SrfTrial& t : result.trials) {
-      csv << format_number(t.factor) << ',' << (t.stable ? "stable" : "failed") << ','
+      csv << factor_text(t.factor) << ',' << (t.stable ? "stable" : "failed") << ','
           << csv_field(t.reason) << ',' << format_number(t.final_displacement) << ','
           << format_number(t.window_increase) << ',' << format_number(t.wall_seconds) << ','
           << csv_field(t.dir) << '\n';
@@ -83,8 +83,8 @@ void write_reports(const std::string& out, const SrfArgs& args, const Scene& sce
   std::ofstream md(out + "/srf.md");
   md << "# " << scene.name << ": strength reduction through " << args.method << " at dp "
      << format_number(scene.spacing) << " m\n\n";
-  md << "Factor of safety: between " << format_number(result.last_stable) << " (last stable) and "
-     << format_number(result.first_failed) << " (first failed); " << result.outcome << ", "
+  md << "Factor of safety: between " << factor_text(result.last_stable) << " (last stable) and "
+     << factor_text(result.first_failed) << " (first failed); " << result.outcome << ", "
      << result.trials.size() << " trials, " << format_number(std::round(wall)) << " s.\n\n";
   md << "| factor | verdict | reason | wall (s) |\n|---|---|---|---|\n";
   for (const SrfTrial& t : result.trials) {
@@ -176,8 +176,8 @@ void add_srf_command(CLI::App& app, int& exit_code) {
       std::cerr << "duet: chart skipped: " << why << '\n';
     }
     std::cout << "factor of safety of " << scene.name << " through " << method.name << ": between "
-              << format_number(result.last_stable) << " (stable) and "
-              << format_number(result.first_failed) << " (failed): " << result.outcome << ", "
+              << factor_text(result.last_stable) << " (stable) and "
+              << factor_text(result.first_failed) << " (failed): " << result.outcome << ", "
               << result.trials.size() << " trials, " << format_number(std::round(wall))
               << " s\nresults: " << out << '\n';
     exit_code = pending_interrupt() ? interrupted_exit_status(pending_interrupt()) : 0;
