@@ -37,6 +37,11 @@ std::string this_program() {
   return error ? std::string("duet") : self.string();
 }
 
+/// The cell's run folder, absolute.
+std::string cell_folder(const std::string& grid_dir, const GridCell& cell) {
+  return fs::absolute(fs::path(grid_dir) / cell.dir).lexically_normal().string();
+}
+
 /// The arguments of `duet run` for one cell (after the program name).
 std::vector<std::string> run_arguments(const Grid& grid, const GridCell& cell,
                                        const std::string& grid_dir) {
@@ -46,7 +51,7 @@ std::vector<std::string> run_arguments(const Grid& grid, const GridCell& cell,
     a.push_back(o);
   }
   a.push_back("--out");
-  a.push_back(fs::absolute(fs::path(grid_dir) / cell.dir).lexically_normal().string());
+  a.push_back(cell_folder(grid_dir, cell));
   a.push_back("--quiet");
   a.push_back("--no-plots");
   return a;
@@ -67,7 +72,7 @@ std::string text_of(const Json& object, const char* key, const std::string& wher
 /// Starts `duet run` for a cell as a child process; returns its pid.
 pid_t spawn_cell(const Grid& grid, const GridCell& cell, const std::string& grid_dir) {
   const std::vector<std::string> arguments = run_arguments(grid, cell, grid_dir);
-  const std::string cell_dir = arguments[arguments.size() - 3];
+  const std::string cell_dir = cell_folder(grid_dir, cell);
   prepare_output_folder(cell_dir);
   const std::string program = this_program();
   std::vector<char*> argv = {const_cast<char*>(program.c_str())};
