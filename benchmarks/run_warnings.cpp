@@ -91,14 +91,20 @@ void add_diagnostic_warnings(const Scene& scene, const Json& diagnostics, std::s
         limited, steps, 100.0 * limited / steps, scene.spfem.stress_increment_limit);
     out.emplace_back(text);
   }
-  const double cuts = diagnostic(diagnostics, "newton.cuts");
-  const double increments = diagnostic(diagnostics, "newton.increments");
-  if (cuts > 0.1 * increments) {
+  // ispfem: the increment halves when Newton fails, max_step_cuts times in a row before the run
+  // fails; an increment within two halvings of that limit nearly ended the run.
+  const double smallest = diagnostic(diagnostics, "newton.increment_min");
+  const SpfemImplicitOptions& implicit = scene.spfem_implicit;
+  const double nominal =
+      implicit.increment > 0.0 ? implicit.increment : scene.time.end_time / implicit.load_steps;
+  const double limit = nominal / std::ldexp(1.0, implicit.max_step_cuts);
+  if (smallest < 4.0 * limit) {
     std::snprintf(text, sizeof text,
-                  "safeguard: Newton failed and the increment was halved %.0f times in %.0f "
-                  "increments; the load path was followed in smaller steps than asked. Try a "
-                  "smaller spfem.implicit.increment or more load_steps",
-                  cuts, increments);
+                  "safeguard: Newton needed increments down to %.3g s, 1/%.0f of the nominal %.3g "
+                  "s, within two halvings of the %d that fail the run (%.0f halvings in all); "
+                  "try more spfem.implicit.load_steps or a larger max_step_cuts",
+                  smallest, nominal / smallest, nominal, implicit.max_step_cuts,
+                  diagnostic(diagnostics, "newton.cuts"));
     out.emplace_back(text);
   }
 }

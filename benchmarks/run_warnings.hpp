@@ -24,7 +24,8 @@ namespace duet {
 /// - energy drift of the explicit step (energy_drift_max > 2 %) where the energy must be
 ///   conserved: linear-elastic materials, no gravity, loads, moving walls or damping;
 /// - steps limited by a safeguard: more than 10 % of the steps cut by the stress increment limit
-///   (stress_limited_steps of steps), or of the increments halved (newton.cuts of increments).
+///   (stress_limited_steps of steps), or an increment within two halvings of the max_step_cuts
+///   that fail an ispfem run (newton.increment_min below 4 x nominal / 2^max_step_cuts).
 std::vector<std::string> run_warnings(const Scene& scene, const MethodInfo& method,
                                       const KineticEnergyRecord& energy, const EnergyBudget& budget,
                                       double end_time, const Json& diagnostics,

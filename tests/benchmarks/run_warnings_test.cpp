@@ -84,11 +84,13 @@ TEST(RunWarnings, StepsCutBySafeguards) {
   limited["stress_limited_steps"] = 10.0;
   EXPECT_TRUE(warnings_for(limited).empty());
 
+  // ispfem: nominal increment end_time / load_steps = 1 s / 100; max_step_cuts 8 fail the run
+  // at 0.01 / 256; within two halvings (below 0.01 / 64 = 1.5625e-4 s) it warns.
   Json newton = Json::object();
-  newton["newton"] = with("increments", 40.0);
-  newton["newton"]["cuts"] = 5.0;
-  EXPECT_TRUE(says(warnings_for(newton), "safeguard: Newton failed"));
-  newton["newton"]["cuts"] = 4.0;
+  newton["newton"] = with("increment_min", 1.5e-4);
+  newton["newton"]["cuts"] = 43.0;
+  EXPECT_TRUE(says(warnings_for(newton), "safeguard: Newton needed increments down to 0.00015 s"));
+  newton["newton"]["increment_min"] = 1.6e-4;
   EXPECT_TRUE(warnings_for(newton).empty());
 }
 
