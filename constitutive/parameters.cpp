@@ -121,7 +121,8 @@ std::string Parameters::choice(std::string_view name, const std::vector<std::str
 }
 
 void Parameters::record(std::string_view name, double value) {
-  note({std::string(name), "derived", "", "", "", "derived from the others (not given in this form)"});
+  note({std::string(name), "derived", "", "", "",
+        "derived from the others (not given in this form)"});
   resolved_[std::string(name)] = value;
 }
 
