@@ -55,11 +55,12 @@ void add_diagnostic_warnings(const Scene& scene, const Json& diagnostics, std::s
   const double n = static_cast<double>(particles);
   if (const double most = diagnostic(diagnostics, "penetrations_max"); most > 0.0) {
     std::snprintf(text, sizeof text,
-                  "penetrations: up to %.0f particles (%.2g %%) were inside a wall or rigid body "
-                  "at once (%.0f at the last step, %.0f particle-steps in all); forces on those "
+                  "penetrations: up to %.0f particle%s (%.2g %%) inside a wall or rigid body at "
+                  "once (%.0f at the last step, %.0f particle-steps in all); forces on those "
                   "boundaries are off. Try more sph.dummy_layers, a smaller sph.cfl or a finer "
                   "spacing",
-                  most, 100.0 * most / n, diagnostic(diagnostics, "penetrations_last_step"),
+                  most, most == 1.0 ? "" : "s", 100.0 * most / n,
+                  diagnostic(diagnostics, "penetrations_last_step"),
                   diagnostic(diagnostics, "penetrations_total"));
     out.emplace_back(text);
   }

@@ -43,7 +43,10 @@ class Charts : public testing::Test {
  protected:
   void SetUp() override {
     ASSERT_FALSE(plotting_python().empty()) << "no python3 with matplotlib";
-    out_ = fs::temp_directory_path() / "duet-charts";
+    // One folder per test: ctest runs the tests of this file side by side.
+    out_ =
+        fs::temp_directory_path() / (std::string("duet-charts-") +
+                                     testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(out_);
   }
   void TearDown() override { fs::remove_all(out_); }

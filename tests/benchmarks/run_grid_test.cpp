@@ -56,7 +56,10 @@ std::vector<std::string> timeless(const std::string& csv_text) {
 class RunGrid : public testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() / "duet-grid-test";
+    // One folder per test: ctest runs the tests of this file side by side.
+    root_ =
+        fs::temp_directory_path() /
+        (std::string("duet-grid-") + testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(root_);
     fs::create_directories(root_);
   }
