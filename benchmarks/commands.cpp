@@ -57,12 +57,6 @@ std::vector<std::string> with_spacing(std::vector<std::string> overrides, double
   return overrides;
 }
 
-void plot(const std::string& script, const std::vector<std::string>& arguments) {
-  std::string why;
-  if (!run_plot_script(script, arguments, &why))
-    std::cerr << "duet: chart skipped: " << why << '\n';
-}
-
 struct RunArgs {
   std::string scene;
   std::string method;
@@ -390,7 +384,7 @@ void add_demo_command(CLI::App& app, int& exit_code) {
     }
     write_compare_csv(*out + "/compare.csv", runs);
     write_compare_markdown(*out + "/compare.md", runs, 0.0);
-    plot("compare.py", {*out + "/compare.csv", *out + "/compare.png", "collapse (demo)"});
+    draw_chart("compare.py", {*out + "/compare.csv", *out + "/compare.png", "collapse (demo)"});
     std::cout << compare_markdown(runs, 0.0) << "results: " << *out << '\n';
     exit_code = pending_interrupt() ? interrupted_exit_status(pending_interrupt()) : 0;
   });

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 
 #include "common/input_error.hpp"
 
@@ -98,6 +99,12 @@ std::vector<std::string> plot_run(const std::string& run_dir, const std::string&
     return {};
   }
   return files;
+}
+
+void draw_chart(const std::string& script, const std::vector<std::string>& arguments) {
+  std::string why;
+  if (!run_plot_script(script, arguments, &why))
+    std::cerr << "duet: chart skipped: " << why << '\n';
 }
 
 bool run_plot_script(const std::string& script, const std::vector<std::string>& arguments,

@@ -13,6 +13,10 @@ std::string shell_quote(const std::string& s);
 /// Path of a Python interpreter that imports matplotlib, or "" when none does.
 std::string plotting_python();
 
+/// run_plot_script, and a chart that cannot be drawn said on stderr ("duet: chart skipped: why"):
+/// a missing chart is never fatal.
+void draw_chart(const std::string& script, const std::vector<std::string>& arguments);
+
 /// Runs benchmarks/plot/<script> with `arguments`. Returns false (and sets `why`) when no Python
 /// with matplotlib is found or the script fails; a missing chart is reported, never fatal.
 bool run_plot_script(const std::string& script, const std::vector<std::string>& arguments,

@@ -224,20 +224,7 @@ std::vector<RunSummary> collect_runs(const Grid& grid, const std::string& grid_d
   for (const GridCell& cell : grid.cells) {
     const std::string dir = grid_dir + "/" + cell.dir;
     const std::string metrics = dir + "/metrics.json";
-    if (fs::exists(metrics)) {
-      try {
-        runs.push_back(summary_from_metrics(read_json(metrics), dir));
-        continue;
-      } catch (const std::runtime_error& e) {
-        RunSummary r;
-        r.scene = grid.scene_name;
-        r.method = cell.method;
-        r.status = "unreadable";
-        r.failure_reason = e.what();
-        runs.push_back(r);
-        continue;
-      }
-    }
+    // A cell without a readable metrics.json: its row says so.
     RunSummary r;
     r.scene = grid.scene_name;
     r.method = cell.method;
@@ -247,6 +234,14 @@ std::vector<RunSummary> collect_runs(const Grid& grid, const std::string& grid_d
     for (const auto& [key, value] : cell.settings) {
       if (key == "spacing") r.spacing = std::stod(value);
     }
+    if (fs::exists(metrics)) {
+      try {
+        r = summary_from_metrics(read_json(metrics), dir);
+      } catch (const std::runtime_error& e) {
+        r.status = "unreadable";
+        r.failure_reason = e.what();
+      }
+    }
     runs.push_back(r);
   }
   return runs;
@@ -254,13 +249,10 @@ std::vector<RunSummary> collect_runs(const Grid& grid, const std::string& grid_d
 
 std::string write_grid_reports(const Grid& grid, const std::string& grid_dir) {
   const std::vector<RunSummary> runs = collect_runs(grid, grid_dir);
-  std::string why;
   if (grid.kind == "compare") {
     write_compare_csv(grid_dir + "/compare.csv", runs);
     write_compare_markdown(grid_dir + "/compare.md", runs, grid.target);
-    if (!run_plot_script("compare.py",
-                         {grid_dir + "/compare.csv", grid_dir + "/compare.png", grid.title}, &why))
-      std::cerr << "duet: chart skipped: " << why << '\n';
+    draw_chart("compare.py", {grid_dir + "/compare.csv", grid_dir + "/compare.png", grid.title});
     return compare_markdown(runs, grid.target);
   }
   std::vector<StabilityCell> cells;
@@ -272,8 +264,7 @@ std::string write_grid_reports(const Grid& grid, const std::string& grid_dir) {
     for (const auto& [key, value] : grid.cells.front().settings)
       chart.push_back(key + "=" + scene_key_unit(key));
   }
-  if (!run_plot_script("stability.py", chart, &why))
-    std::cerr << "duet: chart skipped: " << why << '\n';
+  draw_chart("stability.py", chart);
   long completed = 0;
   for (const RunSummary& r : runs) completed += r.completed() ? 1 : 0;
   return std::to_string(completed) + " of " + std::to_string(runs.size()) +

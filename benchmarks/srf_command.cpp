@@ -167,14 +167,9 @@ void add_srf_command(CLI::App& app, int& exit_code) {
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     write_reports(out, *args, scene, measure, result, wall);
-    std::string why;
-    if (!run_plot_script(
-            "srf.py",
-            {out + "/srf.csv", out + "/srf.png", measure,
-             scene.name + " (" + method.name + ", dp " + format_number(scene.spacing) + " m)"},
-            &why)) {
-      std::cerr << "duet: chart skipped: " << why << '\n';
-    }
+    draw_chart("srf.py",
+               {out + "/srf.csv", out + "/srf.png", measure,
+                scene.name + " (" + method.name + ", dp " + format_number(scene.spacing) + " m)"});
     std::cout << "factor of safety of " << scene.name << " through " << method.name << ": between "
               << factor_text(result.last_stable) << " (stable) and "
               << factor_text(result.first_failed) << " (failed): " << result.outcome << ", "

@@ -145,6 +145,20 @@ def series_of(run, kinds, target):
     return out
 
 
+def force_panels(run, x, xlabel, forces, what, name):
+    """One panel per force measure against `x` (a displacement, a ratio), saved as `name`."""
+    measures = run.scene.get("measure", {})
+    fig, axes = plt.subplots(1, len(forces), figsize=(5.0 * len(forces), 4.0), squeeze=False)
+    for ax, force in zip(axes[0], forces):
+        ax.plot(x, run.series[force], lw=1.4)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(f"{force} ({unit_of(measures[force])})")
+        ax.grid(alpha=0.3)
+    run.title(fig, what)
+    fig.tight_layout(rect=(0, 0, 1, 0.9))
+    run.save(fig, name)
+
+
 def plot_load_displacement(run):
     targets = list(run.scene.get("rigid_body", {})) + [
         name for name, w in run.scene.get("wall", {}).items() if "radial_velocity" not in w]
@@ -155,21 +169,13 @@ def plot_load_displacement(run):
         if not forces or not moves:
             continue
         move = moves[0]
-        d = np.abs(run.series[move])
-        fig, axes = plt.subplots(1, len(forces), figsize=(5.0 * len(forces), 4.0), squeeze=False)
-        for ax, name in zip(axes[0], forces):
-            ax.plot(d, run.series[name], lw=1.4)
-            ax.set_xlabel(f"|{move}| (m: {measures[move].get('component', '')} displacement "
-                          f"of {target})")
-            ax.set_ylabel(f"{name} ({unit_of(measures[name])})")
-            ax.grid(alpha=0.3)
-        run.title(fig, f"load against displacement of {target}")
-        fig.tight_layout(rect=(0, 0, 1, 0.9))
-        run.save(fig, f"load_{target}.png")
+        force_panels(run, np.abs(run.series[move]),
+                     f"|{move}| (m: {measures[move].get('component', '')} displacement of "
+                     f"{target})", forces, f"load against displacement of {target}",
+                     f"load_{target}.png")
 
 
 def plot_expansion(run):
-    measures = run.scene.get("measure", {})
     for target, wall in run.scene.get("wall", {}).items():
         if "radial_velocity" not in wall:
             continue
@@ -180,15 +186,8 @@ def plot_expansion(run):
         a0 = float(np.mean([np.linalg.norm(np.array(p) - centre) for p in wall["points"]]))
         ratio = np.array([(a0 + schedule_integral(wall["radial_velocity"], t)) / a0
                           for t in run.series["time"]])
-        fig, axes = plt.subplots(1, len(forces), figsize=(5.0 * len(forces), 4.0), squeeze=False)
-        for ax, name in zip(axes[0], forces):
-            ax.plot(ratio, run.series[name], lw=1.4)
-            ax.set_xlabel(f"a / a0 ({target}, a0 = {a0:.4g} m)")
-            ax.set_ylabel(f"{name} ({unit_of(measures[name])})")
-            ax.grid(alpha=0.3)
-        run.title(fig, f"expansion of {target}")
-        fig.tight_layout(rect=(0, 0, 1, 0.9))
-        run.save(fig, f"expansion_{target}.png")
+        force_panels(run, ratio, f"a / a0 ({target}, a0 = {a0:.4g} m)", forces,
+                     f"expansion of {target}", f"expansion_{target}.png")
 
 
 def plot_collapse(run):

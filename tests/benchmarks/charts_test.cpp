@@ -17,14 +17,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct PngSize {
-  std::uint32_t width = 0, height = 0;
-};
-
-PngSize png_size(const fs::path& path) {
-  const auto [width, height] = test::png_size(path);
-  return {width, height};
-}
+using test::png_size;
+using test::PngSize;
 
 /// Runs a chart script with Debian's python, returning what it printed.
 std::string draw(const std::string& script, const std::vector<std::string>& arguments) {

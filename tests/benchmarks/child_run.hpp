@@ -51,13 +51,17 @@ inline DuetResult run_duet(const std::string& arguments) {
   return run_command(std::string("'") + DUET_BINARY + "' " + arguments);
 }
 
+struct PngSize {
+  std::uint32_t width = 0, height = 0;
+};
+
 /// Width and height of a PNG from its IHDR chunk; {0, 0} when the file is not a PNG.
-inline std::pair<std::uint32_t, std::uint32_t> png_size(const std::filesystem::path& path) {
+inline PngSize png_size(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   unsigned char h[24] = {};
   in.read(reinterpret_cast<char*>(h), sizeof h);
   const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (!in || !std::equal(signature, signature + 8, h)) return {0, 0};
+  if (!in || !std::equal(signature, signature + 8, h)) return {};
   const auto word = [&](int at) {
     return std::uint32_t(h[at]) << 24 | std::uint32_t(h[at + 1]) << 16 |
            std::uint32_t(h[at + 2]) << 8 | std::uint32_t(h[at + 3]);

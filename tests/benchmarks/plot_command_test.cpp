@@ -16,14 +16,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct PngSize {
-  std::uint32_t width = 0, height = 0;
-};
-
-PngSize png_size(const fs::path& path) {
-  const auto [width, height] = test::png_size(path);
-  return {width, height};
-}
+using test::png_size;
+using test::PngSize;
 
 void expect_chart(const fs::path& path, std::uint32_t min_width, std::uint32_t min_height) {
   ASSERT_TRUE(fs::exists(path)) << path;
