@@ -204,25 +204,14 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs) {
   const SmoothingCells& cells = discretisation_.cells();
   const SmoothingCells& b0 = start_cells_;
   const std::vector<Triangle>& triangles = discretisation_.mesh().triangles;
-  using Triplet = Eigen::Triplet<double, int>;
   const int n_threads = n > kParallelMin ? omp_get_max_threads() : 1;
-  std::vector<std::vector<Triplet>> parts(static_cast<std::size_t>(n_threads));
-
-  // Adds the 2 x 2 block (l, m) of dF_l/du_m to the free dofs of l and m.
-  const auto scatter = [&](std::vector<Triplet>& out, std::int32_t l, std::int32_t m,
-                           const Mat2& block) {
-    for (std::int32_t a = dofs.first[std::size_t(l)]; a < dofs.first[std::size_t(l) + 1]; ++a) {
-      const Vec2 da = dofs.direction[std::size_t(a)];
-      const Vec2 row = block.transpose() * da;
-      for (std::int32_t b = dofs.first[std::size_t(m)]; b < dofs.first[std::size_t(m) + 1]; ++b) {
-        out.emplace_back(a, b, row.dot(dofs.direction[std::size_t(b)]));
-      }
-    }
-  };
+  // The rows' structure is fixed within the increment (refill keeps it): one pattern
+  if (!blocks_.built()) blocks_.build(b0, n_threads);
+  blocks_.zero();
 
 #pragma omp parallel num_threads(n_threads)
   {
-    std::vector<Triplet>& out = parts[std::size_t(omp_get_thread_num())];
+    Mat2* out = blocks_.blocks(omp_get_thread_num());
     std::vector<Eigen::Matrix<double, 3, 2>> q;
     std::vector<double> hessian;
     const bool stabilised = discretisation_.options().stiffness_stabilisation > 0.0 &&
@@ -231,54 +220,41 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs) {
     for (std::size_t k = 0; k < n; ++k) {
       if (!(b0.area[k] > 0.0)) continue;
       const std::int32_t begin = cells.offset[k];
-      const std::int32_t end = cells.offset[k + 1];
+      const std::int32_t length = cells.offset[k + 1] - begin;
+      // dF_l/du_m for l = column[begin + i], m = column[begin + j]: block pair[i * length + j]
+      const std::int32_t* pair = blocks_.row_pairs(k);
       // Material and spin: A_k B_L,l^T [D_k B_L,m^0 + sigma_bar_k B_S,m^0]
-      q.resize(std::size_t(end - begin));
-      for (std::int32_t e = begin; e < end; ++e) {
-        const Vec2& b = b0.gradient[std::size_t(e)];
+      q.resize(std::size_t(length));
+      for (std::int32_t j = 0; j < length; ++j) {
+        const Vec2& b = b0.gradient[std::size_t(begin + j)];
         Eigen::Matrix<double, 1, 2> spin;  // B_S = 1/2 [b_y, -b_x]
         spin << 0.5 * b.y(), -0.5 * b.x();
-        q[std::size_t(e - begin)] =
-            material_tangent_[k] * strain_operator(b) + spin_stress_[k] * spin;
+        q[std::size_t(j)] = material_tangent_[k] * strain_operator(b) + spin_stress_[k] * spin;
       }
       const double area = cells.area[k];
-      for (std::int32_t el = begin; el < end; ++el) {
+      for (std::int32_t i = 0; i < length; ++i) {
         const Eigen::Matrix<double, 2, 3> left =
-            area * strain_operator(cells.gradient[std::size_t(el)]).transpose();
-        const std::int32_t l = cells.column[std::size_t(el)];
-        if (dofs.first[std::size_t(l)] == dofs.first[std::size_t(l) + 1]) continue;
-        for (std::int32_t em = begin; em < end; ++em) {
-          scatter(out, l, cells.column[std::size_t(em)], left * q[std::size_t(em - begin)]);
+            area * strain_operator(cells.gradient[std::size_t(begin + i)]).transpose();
+        for (std::int32_t j = 0; j < length; ++j) {
+          out[pair[i * length + j]].noalias() += left * q[std::size_t(j)];
         }
       }
       if (stabilised) {
         // d^2 W / dx^2 of node k's stabilisation terms (exact: W is quadratic in x)
         stiffness_stabilisation_hessian(triangles, cells.node_triangles, stabilisation_scratch_, k,
-                                        &cells.column[std::size_t(begin)], end - begin, hessian);
-        const std::int32_t length = end - begin;
-        for (std::int32_t i = 0; i < length; ++i) {
-          for (std::int32_t j = 0; j < length; ++j) {
-            const double v = hessian[std::size_t(i * length + j)];
-            if (v != 0.0) {
-              scatter(out, cells.column[std::size_t(begin + i)],
-                      cells.column[std::size_t(begin + j)], v * Mat2::Identity());
-            }
-          }
+                                        &cells.column[std::size_t(begin)], length, hessian);
+        for (std::int32_t i = 0; i < length * length; ++i) {
+          out[pair[i]].diagonal().array() += hessian[std::size_t(i)];
         }
       }
       // Geometric: sigma_k d(A_k b_kl)/du_m
       const Mat2 sigma = stress_[k].topLeftCorner<2, 2>();
       if (!row_derivative_.empty() && !row_derivative_[k].empty()) {
         const std::vector<Vec2>& d = row_derivative_[k];
-        const std::int32_t length = end - begin;
-        for (std::int32_t jl = 0; jl < length; ++jl) {
-          for (std::int32_t jm = 0; jm < length; ++jm) {
-            Mat2 block;
-            block.col(0) = sigma * d[std::size_t((jl * length + jm) * 2)];
-            block.col(1) = sigma * d[std::size_t((jl * length + jm) * 2 + 1)];
-            scatter(out, cells.column[std::size_t(begin + jl)],
-                    cells.column[std::size_t(begin + jm)], block);
-          }
+        for (std::int32_t i = 0; i < length * length; ++i) {
+          Mat2& block = out[pair[i]];
+          block.col(0) += sigma * d[std::size_t(i * 2)];
+          block.col(1) += sigma * d[std::size_t(i * 2 + 1)];
         }
         continue;
       }
@@ -290,6 +266,7 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs) {
         const TriangleTerms& terms = cells.triangle_terms[e];
         if (terms.area == 0.0) continue;
         const double w = cells.triangle_weight[std::size_t(r)];
+        const std::array<std::int32_t, 3>& corner = cells.corner_entry[std::size_t(r)];
         std::array<Vec2, 3> grad;
         std::array<Vec2, 3> sg;
         for (int c = 0; c < 3; ++c) {
@@ -298,23 +275,15 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs) {
         }
         for (int i = 0; i < 3; ++i) {
           for (int j = 0; j < 3; ++j) {
-            const Mat2 block = w * (sg[std::size_t(i)] * grad[std::size_t(j)].transpose() -
-                                    sg[std::size_t(j)] * grad[std::size_t(i)].transpose());
-            scatter(out, triangles[e][std::size_t(i)], triangles[e][std::size_t(j)], block);
+            out[pair[(corner[std::size_t(i)] - begin) * length + corner[std::size_t(j)] - begin]]
+                .noalias() += w * (sg[std::size_t(i)] * grad[std::size_t(j)].transpose() -
+                                   sg[std::size_t(j)] * grad[std::size_t(i)].transpose());
           }
         }
       }
     }
   }
-  std::size_t total = 0;
-  for (const auto& p : parts) total += p.size();
-  std::vector<Triplet> all;
-  all.reserve(total);
-  for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
-  const auto n_free = static_cast<int>(dofs.n_free());
-  tangent_.resize(n_free, n_free);
-  tangent_.setFromTriplets(all.begin(), all.end());
-  tangent_.makeCompressed();
+  blocks_.write_free_dofs(dofs, tangent_);
 }
 
 }  // namespace duet::spfem

@@ -24,13 +24,12 @@
 #include "common/tensor.hpp"
 #include "common/timers.hpp"
 #include "constitutive/model.hpp"
+#include "spfem/block_tangent.hpp"
 #include "spfem/nodal_discretisation.hpp"
 #include "spfem/node_constraints.hpp"
 #include "spfem/stiffness_stabilisation.hpp"
 
 namespace duet::spfem {
-
-using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 class IncrementOperator {
  public:
@@ -76,6 +75,7 @@ class IncrementOperator {
   std::vector<Mat3> material_tangent_;  // in-plane D_k (xx, yy, xy; engineering shear)
   std::vector<Vec3> spin_stress_;       // d sigma_k (xx, yy, xy) / d W_12
   std::vector<Vec2> internal_force_;
+  BlockTangent blocks_;  // the tangent's node pattern, built at the first assembly
   SparseMatrix tangent_;
   // Rows with boundary-layer or wall-strip terms: d(A_k b_kl)/dx_m by central differences
   std::vector<std::vector<Vec2>> row_derivative_;
