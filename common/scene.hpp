@@ -253,6 +253,13 @@ struct SpfemImplicitOptions {
   int easy_iterations = 4;
   int max_step_cuts = 8;
   int active_set_passes = 3;  // contact changes re-solved within one increment
+  // Newton's start on the free dofs: the last increment's motion scaled to this one
+  // (extrapolated) or rest (none, the linearised step from the converged state)
+  bool extrapolate = false;
+  // dynamics = "newmark": the inertia M a in the residual, a and v by Newmark's average
+  // acceleration (beta 1/4, gamma 1/2; unconditionally stable, no numerical damping); the
+  // default "quasi-static" has none
+  bool newmark = false;
 };
 
 struct Scene {

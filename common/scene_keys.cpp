@@ -186,6 +186,10 @@ std::vector<SceneKey> make_keys() {
       {"spfem.implicit", "max_step_cuts", "integer", "-", "8", "halvings in a row before failing"},
       {"spfem.implicit", "active_set_passes", "integer", "-", "3",
        "contact changes re-solved within one increment"},
+      {"spfem.implicit", "predictor", "string", "-", "\"none\"",
+       "Newton's start: extrapolated (the last increment's motion) | none (rest)"},
+      {"spfem.implicit", "dynamics", "string", "-", "\"quasi-static\"",
+       "quasi-static | newmark (inertia, average acceleration)"},
   };
 }
 

@@ -419,6 +419,10 @@ SpfemImplicitOptions read_implicit(SectionReader& r) {
   o.easy_iterations = r.integer("easy_iterations", o.easy_iterations, 1);
   o.max_step_cuts = r.integer("max_step_cuts", o.max_step_cuts, 0);
   o.active_set_passes = r.integer("active_set_passes", o.active_set_passes, 1);
+  o.extrapolate = r.choice("predictor", {"extrapolated", "none"},
+                           o.extrapolate ? "extrapolated" : "none") == "extrapolated";
+  o.newmark = r.choice("dynamics", {"quasi-static", "newmark"},
+                       o.newmark ? "newmark" : "quasi-static") == "newmark";
   r.finish();
   return o;
 }

@@ -43,6 +43,12 @@ void BlockTangent::build(const SmoothingCells& cells, int threads) {
           find_block(offset_, column_, column_[std::size_t(p)], static_cast<std::int32_t>(l));
     }
   }
+  diagonal_.assign(n, -1);
+  for (std::size_t l = 0; l < n; ++l) {
+    const auto l32 = static_cast<std::int32_t>(l);
+    const std::int32_t p = find_block(offset_, column_, l32, l32);
+    if (p < offset_[l + 1] && column_[std::size_t(p)] == l32) diagonal_[l] = p;
+  }
   row_pair_offset_.assign(n + 1, 0);
   row_pair_.clear();
   for (std::size_t k = 0; k < n; ++k) {
@@ -64,6 +70,12 @@ void BlockTangent::build(const SmoothingCells& cells, int threads) {
 
 void BlockTangent::zero() {
   for (std::vector<Mat2>& part : parts_) std::fill(part.begin(), part.end(), Mat2::Zero());
+}
+
+void BlockTangent::add_to_diagonal(const std::vector<double>& d) {
+  for (std::size_t l = 0; l < diagonal_.size() && l < d.size(); ++l) {
+    if (diagonal_[l] >= 0) parts_[0][std::size_t(diagonal_[l])].diagonal().array() += d[l];
+  }
 }
 
 void BlockTangent::write_free_dofs(const DofMap& dofs, SparseMatrix& out) {

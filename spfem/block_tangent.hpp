@@ -37,6 +37,9 @@ class BlockTangent {
   /// The blocks thread `t` adds into (dF_l / du_m, 2 x 2).
   Mat2* blocks(int t) { return parts_[std::size_t(t)].data(); }
 
+  /// Adds d[l] times the identity to block (l, l) of every node in some row.
+  void add_to_diagonal(const std::vector<double>& d);
+
   /// Sums the threads' blocks and writes da^T B(l, m) db for the free dofs a of l and b of m.
   void write_free_dofs(const DofMap& dofs, SparseMatrix& out);
 
@@ -44,6 +47,7 @@ class BlockTangent {
   std::vector<std::int32_t> offset_;           // n_nodes + 1 block-row starts
   std::vector<std::int32_t> column_;           // node m of each block, sorted within a row
   std::vector<std::int32_t> transpose_;        // per block (l, m): the index of block (m, l)
+  std::vector<std::int32_t> diagonal_;         // per node: its block (l, l), -1 in no row
   std::vector<std::int32_t> row_pair_offset_;  // n_nodes + 1 starts into row_pair_
   std::vector<std::int32_t> row_pair_;
   std::vector<std::vector<Mat2>> parts_;    // per thread

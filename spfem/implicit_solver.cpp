@@ -54,6 +54,8 @@ void ImplicitSolver::initialise(Particles& particles) {
   rigid_contact_.assign(n, 0);
   rigid_contact_initialised_ = false;
   previous_u_.assign(n, Vec2::Zero());
+  acceleration_.assign(n, Vec2::Zero());
+  dynamic_started_ = false;
   previous_increment_ = 0.0;
   increment_ = 0.0;
   external_force_.assign(n, Vec2::Zero());
@@ -179,36 +181,77 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
   }
   IncrementOperator op(discretisation_, setup_.models, particles, wall_increment, &timers_);
   const double scale_dt = previous_increment_ > 0.0 ? (t1 - t0) / previous_increment_ : 0.0;
+  // Newmark's average acceleration (beta 1/4, gamma 1/2): a_n+1 = c (u - dt v_n) - a_n with
+  // c = 1 / (beta dt^2); the inertia M a_n+1 joins F_int and c M the tangent's diagonal
+  const bool inertia = o.newmark && !settling_;
+  const double c_mass = inertia ? 4.0 / ((t1 - t0) * (t1 - t0)) : 0.0;
+  if (inertia && !dynamic_started_) {
+    // the first step from rest under the loads alone (a body released from a settled state
+    // has a = 0: settle() marks it started)
+    for (std::size_t i = 0; i < n; ++i) {
+      acceleration_[i] = particles.mass[i] > 0.0 ? Vec2(external_force_[i] / particles.mass[i])
+                                                 : Vec2(Vec2::Zero());
+    }
+    dynamic_started_ = true;
+  }
+  const auto inertia_force = [&](std::size_t i, const Vec2& ui) -> Vec2 {
+    if (!inertia) return Vec2::Zero();
+    const double dt = t1 - t0;
+    return particles.mass[i] *
+           (c_mass * (ui - dt * particles.velocity[i]) - acceleration_[i]).eval();
+  };
+  std::vector<double> mass_diagonal;
+  if (inertia) {
+    mass_diagonal.resize(n);
+    for (std::size_t i = 0; i < n; ++i) mass_diagonal[i] = c_mass * particles.mass[i];
+  }
 
   for (int pass = 0; pass < o.active_set_passes; ++pass) {
     const DofMap dofs = eliminate(n, constraints, held);
     long n_constrained = 0;
     for (std::size_t i = 0; i < n; ++i) n_constrained += dofs.constrained[i] && !held[i];
     counters_.constrained_nodes_max = std::max(counters_.constrained_nodes_max, n_constrained);
-    if (n_constrained == 0) {
+    if (n_constrained == 0 && !inertia) {
       std::ostringstream why;
       why << "ispfem: no wall or rigid body holds any node at t = " << t0
           << " s: the quasi-static tangent is singular (the body can move as a rigid body)";
       throw NumericalFailure(why.str());
     }
-    // Start: the prescribed motion, and the last increment's motion (scaled) on the free dofs
-    std::vector<Vec2> u(n, Vec2::Zero());
-    for (std::size_t i = 0; i < n; ++i) {
-      u[i] = dofs.prescribed[i];
+    // Start: the prescribed motion on the constrained parts and, on the free dofs, rest
+    // (spfem.implicit.predictor = none) or the last increment's motion scaled to this one
+    // (extrapolated). Neither wins everywhere (smooth paths like the extrapolation, plastic flow
+    // does not), nor does the smaller starting residual tell which is nearer (RESULTS.md).
+    std::vector<Vec2> u(dofs.prescribed);
+    for (std::size_t i = 0; i < n && inertia; ++i) {
+      // with inertia: the motion at constant acceleration, dt v_n + dt^2 / 2 a_n
+      const double dt = t1 - t0;
+      const Vec2 free_motion = dt * particles.velocity[i] + 0.5 * dt * dt * acceleration_[i];
+      for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
+        const Vec2& d = dofs.direction[std::size_t(a)];
+        u[i] += free_motion.dot(d) * d;
+      }
+    }
+    for (std::size_t i = 0; i < n && o.extrapolate && !inertia; ++i) {
       for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
         const Vec2& d = dofs.direction[std::size_t(a)];
         u[i] += scale_dt * previous_u_[i].dot(d) * d;
       }
     }
     Eigen::UmfPackLU<SparseMatrix> lu;
+    // No iterative refinement: on the footing's tangent it cost six times the solve and gave the
+    // same residual (1e-13)
+    lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
     Eigen::VectorXd residual(static_cast<Eigen::Index>(dofs.n_free()));
     // R = F_ext - F_int on the free dofs, relative to the external load or, when the reaction
     // is larger (a prescribed motion and no load: the footing, the cavity), to the reaction
     const auto relative_residual = [&]() {
       const std::vector<Vec2>& f_int = op.internal_force();
       double reaction = 0.0;
+      double inertia_norm = 0.0;
       for (std::size_t i = 0; i < n; ++i) {
-        Vec2 r = external_force_[i] - f_int[i];
+        const Vec2 m_a = inertia_force(i, u[i]);
+        inertia_norm += m_a.squaredNorm();
+        Vec2 r = external_force_[i] - f_int[i] - m_a;
         for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
           const Vec2& d = dofs.direction[std::size_t(a)];
           residual(a) = r.dot(d);
@@ -216,7 +259,7 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
         }
         if (!held[i]) reaction += r.squaredNorm();
       }
-      const double scale = std::max(external_norm, std::sqrt(reaction));
+      const double scale = std::max({external_norm, std::sqrt(reaction), std::sqrt(inertia_norm)});
       const double norm = residual.norm();
       return scale > 0.0 ? norm / scale : norm;
     };
@@ -240,10 +283,18 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
         break;
       }
       if (iteration >= o.max_iterations) {
-        attempt.why = "no convergence in " + std::to_string(o.max_iterations) + " iterations";
+        // where: the node of the largest residual component, for the user to look at
+        Eigen::Index worst = 0;
+        residual.cwiseAbs().maxCoeff(&worst);
+        const auto node = std::size_t(dofs.node[std::size_t(worst)]);
+        std::ostringstream why;
+        why << "no convergence in " << o.max_iterations << " iterations (largest residual at node "
+            << node << ", x = " << particles.position[node].x()
+            << " m, y = " << particles.position[node].y() << " m)";
+        attempt.why = why.str();
         return attempt;
       }
-      op.assemble_tangent(dofs);
+      op.assemble_tangent(dofs, mass_diagonal);
       Eigen::VectorXd du;
       {
         ScopedTimer t(timers_, Phase::solve);
@@ -347,7 +398,10 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
       if (owner[i] < 0 || c.kind == ConstraintKind::fixed) owner[i] = c.boundary;
     }
     for (std::size_t i = 0; i < n; ++i) {
-      if (owner[i] >= 0) boundary_force_[std::size_t(owner[i])] += external_force_[i] - f_int[i];
+      if (owner[i] >= 0) {
+        boundary_force_[std::size_t(owner[i])] +=
+            external_force_[i] - f_int[i] - inertia_force(i, u[i]);
+      }
     }
     add_wall_strip_reactions(discretisation_.wall_strips(), discretisation_.cells(), op.stress(),
                              boundary_force_);
@@ -356,7 +410,13 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
   for (std::size_t i = 0; i < n; ++i) {
     particles.position[i] += u[i];
     particles.displacement[i] += u[i];
-    particles.velocity[i] = dt > 0.0 ? Vec2(u[i] / dt) : Vec2(Vec2::Zero());
+    if (inertia) {
+      const Vec2 a = c_mass * (u[i] - dt * particles.velocity[i]) - acceleration_[i];
+      particles.velocity[i] += 0.5 * dt * (acceleration_[i] + a);
+      acceleration_[i] = a;
+    } else {
+      particles.velocity[i] = dt > 0.0 ? Vec2(u[i] / dt) : Vec2(Vec2::Zero());
+    }
     particles.stress[i] = op.stress()[i];
     std::copy(op.internal().begin() + std::ptrdiff_t(i * width),
               op.internal().begin() + std::ptrdiff_t((i + 1) * width), particles.internal.of(i));
@@ -438,6 +498,8 @@ void ImplicitSolver::settle(Particles& particles, int increments) {
   settling_ = false;
   particles.start_from_rest();
   previous_u_.assign(particles.size(), Vec2::Zero());
+  acceleration_.assign(particles.size(), Vec2::Zero());  // released in equilibrium
+  dynamic_started_ = true;
   previous_increment_ = 0.0;
 }
 

@@ -188,7 +188,7 @@ bool IncrementOperator::evaluate(const std::vector<Vec2>& u) {
   return true;
 }
 
-void IncrementOperator::assemble_tangent(const DofMap& dofs) {
+void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<double>& diagonal) {
   ScopedTimer timer(*timers_, Phase::assembly);
   const std::size_t n = start_.size();
   // The geometric part of rows with layer or wall-strip terms (their weights are not A_e / 3
@@ -283,6 +283,7 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs) {
       }
     }
   }
+  if (!diagonal.empty()) blocks_.add_to_diagonal(diagonal);
   blocks_.write_free_dofs(dofs, tangent_);
 }
 

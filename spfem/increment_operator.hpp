@@ -46,8 +46,9 @@ class IncrementOperator {
   /// could not integrate (a non-finite stress).
   bool evaluate(const std::vector<Vec2>& u);
 
-  /// The tangent dF_int/du on the free dofs of `dofs` at the state of the last evaluate().
-  void assemble_tangent(const DofMap& dofs);
+  /// The tangent dF_int/du on the free dofs of `dofs` at the state of the last evaluate(), plus
+  /// `diagonal[i]` times the identity on node i's block when given (Newmark: c M).
+  void assemble_tangent(const DofMap& dofs, const std::vector<double>& diagonal = {});
 
   const std::vector<Vec2>& internal_force() const { return internal_force_; }
   const std::vector<Mat3>& stress() const { return stress_; }

@@ -68,13 +68,13 @@ Setup make_setup(const Scene& scene) {
 }
 
 IspfemSetup make_implicit_setup(const Scene& scene) {
-  // Quasi-static: a body set moving cannot be honoured (Newmark dynamics is not implemented), and
-  // a run would "complete" standing still (bar.toml: period NaN)
+  // Quasi-static: a body set moving cannot be honoured, and a run would "complete" standing
+  // still (bar.toml: period NaN)
   for (const Body& b : scene.bodies) {
-    if (b.initial_velocity.squaredNorm() > 0.0) {
+    if (b.initial_velocity.squaredNorm() > 0.0 && !scene.spfem_implicit.newmark) {
       throw InputError("body." + b.name +
-                       ".initial_velocity: ispfem is quasi-static and cannot start a body moving "
-                       "(implicit dynamics is not implemented); run this scene with sph or espfem");
+                       ".initial_velocity: ispfem is quasi-static by default and cannot start a "
+                       "body moving; set spfem.implicit.dynamics = \"newmark\" for inertia");
     }
   }
   IspfemSetup setup = make_setup<IspfemSetup>(scene);

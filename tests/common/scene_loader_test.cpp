@@ -152,12 +152,18 @@ TEST(SceneLoader, ImplicitOptionsOutOfRangeAreRefusedNamingTheKey) {
   for (const std::string bad :
        {"spfem.implicit.tolerance=-1e-8", "spfem.implicit.tolerance=0",
         "spfem.implicit.displacement_tolerance=-1", "spfem.implicit.load_steps=0",
-        "spfem.implicit.increment=-0.1", "spfem.implicit.max_iterations=0"}) {
+        "spfem.implicit.increment=-0.1", "spfem.implicit.max_iterations=0",
+        "spfem.implicit.predictor=linear"}) {
     const std::string message = refusal(kScene, {bad});
     const std::string key = bad.substr(0, bad.find('='));
     EXPECT_NE(message.find(key), std::string::npos) << bad << ": " << message;
   }
   EXPECT_DOUBLE_EQ(load_scene_from_string(kScene, "scene.toml").spfem_implicit.tolerance, 1e-8);
+  // Newton starts from rest unless a scene asks for the extrapolated start
+  EXPECT_FALSE(load_scene_from_string(kScene, "scene.toml").spfem_implicit.extrapolate);
+  EXPECT_TRUE(
+      load_scene_from_string(kScene, "scene.toml", {"spfem.implicit.predictor=extrapolated"})
+          .spfem_implicit.extrapolate);
 }
 
 TEST(SceneLoader, RemeshAngleFractionDefaultsToThePlainThresholdAndStaysWithinOne) {
