@@ -354,17 +354,38 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     bool changed = false;
     const std::vector<Vec2>& f_int = op.internal_force();
     std::vector<NodeConstraint> kept;
-    for (const NodeConstraint& c : constraints) {
+    // A rigid body's contact pressure, node by node, oscillates with nodal integration's
+    // stresses (under footing-deep's footing one node in the middle pulled with 36 % of the
+    // mean compression of the others, was let go, and the bearing at w/B 0.1 fell by 14 %):
+    // the release test reads the normal reaction summed over the node and the nodes the same
+    // boundary holds within 1.5 dp of it.
+    std::vector<double> pull(constraints.size(), 0.0);
+    for (std::size_t a = 0; a < constraints.size(); ++a) {
+      const auto i = std::size_t(constraints[a].node);
+      pull[a] = (external_force_[i] - f_int[i]).dot(constraints[a].normal);
+    }
+    const double near = 1.5 * setup_.spacing;
+    for (std::size_t a = 0; a < constraints.size(); ++a) {
+      const NodeConstraint& c = constraints[a];
       const NodeBoundary& b = discretisation_.boundaries()[std::size_t(c.boundary)];
+      if (!b.rigid_body || b.condition == NodeCondition::bonded || settling_ || !(pull[a] > 0.0)) {
+        continue;
+      }
       const auto i = std::size_t(c.node);
-      // R_i: force of the soil on the boundary; tensile when it pulls the boundary towards the
-      // soil (along the normal into the soil)
+      double sum = 0.0;
+      for (std::size_t o = 0; o < constraints.size(); ++o) {
+        const auto j = std::size_t(constraints[o].node);
+        if (constraints[o].boundary == c.boundary &&
+            (particles.position[j] - particles.position[i]).norm() <= near) {
+          sum += pull[o];
+        }
+      }
       const Vec2 r = external_force_[i] - f_int[i];
-      const double pull = r.dot(c.normal);
       const double size = std::max(1e-9 * r.norm(), 1e-12);
       // Walls hold the nodes they touch both ways (a free-slip wall is mostly a symmetry plane,
-      // which carries the cavity's tensile hoop stress); a rigid body lets go of a tensile node.
-      if (b.rigid_body && b.condition != NodeCondition::bonded && pull > size && !settling_) {
+      // which carries the cavity's tensile hoop stress); a rigid body lets go of a node whose
+      // neighbourhood pulls.
+      if (sum > size) {
         if (released_[i] == 0) ++counters_.releases;
         released_[i] = 1;
         changed = true;
