@@ -188,8 +188,9 @@ void register_espfem(MethodRegistry& registry) {
 
 void register_ispfem(MethodRegistry& registry) {
   registry.add({"ispfem",
-                "implicit (Newton-Raphson) smoothed particle finite element method, quasi-static "
-                "(Zhang, Yuan & Dai 2018; papers/004)",
+                "implicit (Newton-Raphson) smoothed particle finite element method, quasi-static, "
+                "or dynamic with spfem.implicit.dynamics = newmark (Zhang, Yuan & Dai 2018; "
+                "papers/004)",
                 [](const Scene& scene) { return std::make_unique<IspfemMethod>(scene); },
                 /*dynamic=*/false,
                 // the sparse tangent and its LU factors: 2.0 GB at 62,500 nodes (footing, dp 0.02)
