@@ -176,8 +176,8 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       failure = Failure{problem->reason, time, problem->particle, problem->position};
       break;
     }
-    // A quasi-static method's velocities are increments over a load step, not inertia.
-    if (method.dynamic) {
+    // A quasi-static run's velocities are increments over a load step, not inertia.
+    if (solver->inertial()) {
       if (auto reason = energy_runaway(scene.checks, energy.end, budget)) {
         failure = Failure{*reason, time};
         break;
@@ -242,7 +242,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   metrics["kinetic_energy"] = energy.to_json();
   metrics["energy_input"] = budget.to_json();
   const std::vector<std::string> warnings =
-      status == "completed" ? run_warnings(scene, method, energy, budget, time,
+      status == "completed" ? run_warnings(scene, solver->inertial(), energy, budget, time,
                                            metrics["diagnostics"], particles.size())
                             : std::vector<std::string>{};
   Json warning_list = Json::array();

@@ -112,14 +112,13 @@ void add_diagnostic_warnings(const Scene& scene, const Json& diagnostics, std::s
 
 }  // namespace
 
-std::vector<std::string> run_warnings(const Scene& scene, const MethodInfo& method,
+std::vector<std::string> run_warnings(const Scene& scene, bool inertial,
                                       const KineticEnergyRecord& energy, const EnergyBudget& budget,
                                       double end_time, const Json& diagnostics,
                                       std::size_t particles) {
   std::vector<std::string> out;
   char text[400];
-  const bool settling =
-      method.dynamic && scene.gravity != Vec2::Zero() && !driven_at(scene, end_time);
+  const bool settling = inertial && scene.gravity != Vec2::Zero() && !driven_at(scene, end_time);
   // Both relative to the peak and to the energy put in: a slope creeping from rest has its peak
   // at the end, at a millionth of the work of gravity.
   if (settling && energy.end_over_peak() > 1e-3 && energy.end > 1e-4 * budget.input()) {
@@ -130,7 +129,7 @@ std::vector<std::string> run_warnings(const Scene& scene, const MethodInfo& meth
                   end_time, energy.end_over_peak(), energy.peak_time);
     out.emplace_back(text);
   }
-  if (method.dynamic && !budget.incomplete() && budget.peak_ratio() > 1.2) {
+  if (inertial && !budget.incomplete() && budget.peak_ratio() > 1.2) {
     std::snprintf(text, sizeof text,
                   "the kinetic energy reached %.3g times the energy put in (near t = %g s; the run "
                   "fails at checks.kinetic_energy_factor = %g): look at the frames there for "

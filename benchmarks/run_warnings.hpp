@@ -26,7 +26,7 @@ namespace duet {
 /// - steps limited by a safeguard: more than 10 % of the steps cut by the stress increment limit
 ///   (stress_limited_steps of steps), or an increment within two halvings of the max_step_cuts
 ///   that fail an ispfem run (newton.increment_min below 4 x nominal / 2^max_step_cuts).
-std::vector<std::string> run_warnings(const Scene& scene, const MethodInfo& method,
+std::vector<std::string> run_warnings(const Scene& scene, bool inertial,
                                       const KineticEnergyRecord& energy, const EnergyBudget& budget,
                                       double end_time, const Json& diagnostics,
                                       std::size_t particles);

@@ -64,6 +64,10 @@ class Solver {
 
   /// Method-specific counters for metrics.json (penetrations, remeshes, Newton iterations, ...).
   virtual Json diagnostics() const { return Json::object(); }
+
+  /// false: this run solves for equilibrium (ispfem quasi-static): its velocities are increments
+  /// over a load step, not inertia, so the kinetic-energy checks and warnings do not apply.
+  virtual bool inertial() const { return true; }
 };
 
 struct MethodInfo {

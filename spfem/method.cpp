@@ -138,7 +138,8 @@ class EspfemMethod final : public Solver {
 /// The implicit SPFEM: one step of the driver is one converged increment.
 class IspfemMethod final : public Solver {
  public:
-  explicit IspfemMethod(const Scene& scene) : solver_(make_implicit_setup(scene)) {}
+  explicit IspfemMethod(const Scene& scene)
+      : newmark_(scene.spfem_implicit.newmark), solver_(make_implicit_setup(scene)) {}
 
   void initialise(const Scene& scene, Particles& particles) override {
     solver_.initialise(particles);
@@ -163,11 +164,14 @@ class IspfemMethod final : public Solver {
 
   Json diagnostics() const override { return solver_.diagnostics(); }
 
+  bool inertial() const override { return newmark_; }
+
   const std::vector<MeshTriangle>* mesh_triangles(const Particles& particles) override {
     return mesh_in_use(solver_.discretisation(), particles, preview_);
   }
 
  private:
+  bool newmark_ = false;
   // Gravity loading: gravity in this many equal increments to a static equilibrium
   static constexpr int kSettleIncrements = 10;
   ImplicitSolver solver_;

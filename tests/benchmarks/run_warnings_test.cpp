@@ -37,8 +37,7 @@ std::vector<std::string> warnings_for(const Json& diagnostics,
   const Scene scene = load_scene_checked_from_string(kElasticBlock, "block.toml", overrides);
   KineticEnergyRecord energy;  // never moved: no kinetic energy warning
   const EnergyBudget budget(scene, Particles{}, 0.0);
-  return run_warnings(scene, builtin_methods().find("espfem"), energy, budget, 1.0, diagnostics,
-                      100);
+  return run_warnings(scene, /*inertial=*/true, energy, budget, 1.0, diagnostics, 100);
 }
 
 Json with(const std::string& key, double value) {
