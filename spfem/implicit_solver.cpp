@@ -43,11 +43,10 @@ ImplicitSolver::ImplicitSolver(IspfemSetup setup)
 
 void ImplicitSolver::initialise(Particles& particles) {
 #if defined(__GLIBC__)
-  // UMFPACK allocates its numeric workspace (64 MB peak for the footing's 4,800 dofs) at every
-  // factorisation and frees it after; above glibc's mmap threshold each of those is a fresh
-  // mapping whose pages fault in zeroed. Kept in the heap instead, a factorisation of the
-  // footing's tangent took 30 ms instead of 37 (benchmarks/RESULTS.md). Process-wide; the memory
-  // stays with the process until it ends.
+  // UMFPACK allocates its numeric workspace (tens of MB) at every factorisation and frees it
+  // after; above glibc's mmap threshold each is a fresh mapping whose pages fault in zeroed.
+  // Kept in the heap, a factorisation is a fifth faster (benchmarks/RESULTS.md). Process-wide;
+  // the memory stays with the process until it ends.
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
 #endif
@@ -354,11 +353,10 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     bool changed = false;
     const std::vector<Vec2>& f_int = op.internal_force();
     std::vector<NodeConstraint> kept;
-    // A rigid body's contact pressure, node by node, oscillates with nodal integration's
-    // stresses (under footing-deep's footing one node in the middle pulled with 36 % of the
-    // mean compression of the others, was let go, and the bearing at w/B 0.1 fell by 14 %):
-    // the release test reads the normal reaction summed over the node and the nodes the same
-    // boundary holds within 1.5 dp of it.
+    // A rigid body's contact pressure oscillates from node to node with nodal integration's
+    // stresses (one node let go in the middle of footing-deep's footing moved its bearing by
+    // 14 %, RESULTS.md): the release test reads the normal reaction summed over the node and
+    // the nodes the same boundary holds within 1.5 dp of it.
     std::vector<double> pull(constraints.size(), 0.0);
     for (std::size_t a = 0; a < constraints.size(); ++a) {
       const auto i = std::size_t(constraints[a].node);
