@@ -233,19 +233,15 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     // (extrapolated). Neither wins everywhere (smooth paths like the extrapolation, plastic flow
     // does not), nor does the smaller starting residual tell which is nearer (RESULTS.md).
     std::vector<Vec2> u(dofs.prescribed);
-    for (std::size_t i = 0; i < n && inertia; ++i) {
-      // with inertia: the motion at constant acceleration, dt v_n + dt^2 / 2 a_n
-      const double dt = t1 - t0;
-      const Vec2 free_motion = dt * particles.velocity[i] + 0.5 * dt * dt * acceleration_[i];
+    // With inertia the guess is the motion at constant acceleration, dt v_n + dt^2 / 2 a_n.
+    const double dt = t1 - t0;
+    for (std::size_t i = 0; i < n && (inertia || o.extrapolate); ++i) {
+      const Vec2 guess = inertia
+                             ? Vec2(dt * particles.velocity[i] + 0.5 * dt * dt * acceleration_[i])
+                             : Vec2(scale_dt * previous_u_[i]);
       for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
         const Vec2& d = dofs.direction[std::size_t(a)];
-        u[i] += free_motion.dot(d) * d;
-      }
-    }
-    for (std::size_t i = 0; i < n && o.extrapolate && !inertia; ++i) {
-      for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
-        const Vec2& d = dofs.direction[std::size_t(a)];
-        u[i] += scale_dt * previous_u_[i].dot(d) * d;
+        u[i] += guess.dot(d) * d;
       }
     }
     Eigen::UmfPackLU<SparseMatrix> lu;
