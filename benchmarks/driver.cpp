@@ -134,11 +134,20 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   int interrupted_by = 0;  // the signal that ended the run, or 0
   bool output_failed = false;
   std::vector<Vec2> previous_position = particles.position;
-
-  {
+  // A frame (and the series with it): a full disk or a quota ends the run, the frames written
+  // before stay readable. A failure found before the write stays the run's reason.
+  const auto write_output = [&](bool with_series) {
     ScopedTimer t(output_timers, Phase::output);
-    writer.write_frame(time, particles, shown(time));
-  }
+    try {
+      if (with_series) writer.set_series(measures.names(), measures.columns());
+      writer.write_frame(time, particles, shown(time));
+    } catch (const std::exception& e) {
+      output_failed = true;
+      if (!failure) failure = Failure{std::string("writing the output failed: ") + e.what(), time};
+    }
+  };
+
+  write_output(false);
   measures.sample(time, particles, solver->reactions());
   std::optional<Progress> progress;
   if (options.show_progress) progress.emplace(end_time, std::cerr, isatty(2) != 0);
@@ -188,16 +197,8 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       next_sample += sample_interval;
     }
     if (time >= next_output) {
-      ScopedTimer t(output_timers, Phase::output);
-      try {
-        writer.write_frame(time, particles, shown(time));
-        writer.write_series(measures.names(), measures.columns());
-      } catch (const std::exception& e) {
-        // A full disk or a quota: the run ends, the frames written before stay readable.
-        output_failed = true;
-        failure = Failure{std::string("writing the output failed: ") + e.what(), time};
-        break;
-      }
+      write_output(true);
+      if (output_failed) break;
       next_output += output_interval;
     }
     if (progress) progress->update(time, steps);
@@ -205,15 +206,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   }
   // The last state (or the state at failure) is always a frame, unless writing is what failed.
   if (!failure) measures.sample(time, particles, solver->reactions());
-  if (!output_failed) {
-    ScopedTimer t(output_timers, Phase::output);
-    try {
-      writer.write_frame(time, particles, shown(time));
-      writer.write_series(measures.names(), measures.columns());
-    } catch (const std::exception& e) {
-      failure = Failure{std::string("writing the output failed: ") + e.what(), time};
-    }
-  }
+  if (!output_failed) write_output(true);
   const std::string status = failure ? "failed" : interrupted_by ? "interrupted" : "completed";
   if (interrupted_by) {
     failure = Failure{"interrupted by signal " + std::to_string(interrupted_by), time};

@@ -182,33 +182,6 @@ void write_string_dataset(hid_t location, const std::string& name, const std::st
           "write dataset " + name);
 }
 
-/// Writes `values` into the 1-D extendible dataset `name` (created chunked on first use, then
-/// resized), so a series rewritten at every frame does not leave dead copies in the file.
-void write_extendible(hid_t location, const std::string& name, const std::vector<double>& values,
-                      const std::string& path) {
-  const hsize_t size = values.size();
-  if (!link_exists(location, name)) {
-    const hsize_t zero = 0;
-    const hsize_t unlimited = H5S_UNLIMITED;
-    const hsize_t chunk = 1024;
-    const Handle space(checked(H5Screate_simple(1, &zero, &unlimited), path, "H5Screate_simple"),
-                       H5Sclose);
-    const Handle properties(checked(H5Pcreate(H5P_DATASET_CREATE), path, "H5Pcreate"), H5Pclose);
-    checked(H5Pset_chunk(properties.get(), 1, &chunk), path, "H5Pset_chunk");
-    const Handle created(checked(H5Dcreate2(location, name.c_str(), H5T_NATIVE_DOUBLE, space.get(),
-                                            H5P_DEFAULT, properties.get(), H5P_DEFAULT),
-                                 path, "create dataset " + name),
-                         H5Dclose);
-  }
-  const Handle set(
-      checked(H5Dopen2(location, name.c_str(), H5P_DEFAULT), path, "open dataset " + name),
-      H5Dclose);
-  checked(H5Dset_extent(set.get(), &size), path, "resize dataset " + name);
-  if (size == 0) return;
-  checked(H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-          path, "write dataset " + name);
-}
-
 /// Rows of fixed-size integer arrays, flattened row-major.
 template <std::size_t N>
 std::vector<std::int32_t> flat(const std::vector<std::array<std::int32_t, N>>& rows) {
@@ -334,43 +307,100 @@ double read_double_attribute(hid_t location, const std::string& name, const std:
 
 }  // namespace
 
+// ---------------------------------------------------------------------------------------------
+// RunWriter.
+
+namespace {
+
+/// Creates the HDF5 file `temporary`, lets `fill` write its root group, closes it (checked: the
+/// close is where HDF5 writes what it holds) and renames it to `path`: whoever opens `path` sees
+/// the previous complete file or this one.
+template <typename Fill>
+void write_whole_file(const std::string& path, Fill fill) {
+  const std::string temporary = path + ".tmp";
+  const Handle fapl = unlocked_access(temporary);
+  hid_t file = checked(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()),
+                       temporary, "create");
+  try {
+    const Handle root(checked(H5Gopen2(file, "/", H5P_DEFAULT), temporary, "open /"), H5Gclose);
+    fill(root.get(), temporary);
+  } catch (...) {
+    H5Fclose(file);
+    std::remove(temporary.c_str());
+    throw;
+  }
+  checked(H5Fclose(std::exchange(file, -1)), temporary, "close");
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) throw std::runtime_error(path + ": cannot replace (" + error.message() + ")");
+}
+
+Handle create_group(hid_t location, const std::string& name, const std::string& path) {
+  return Handle(checked(H5Gcreate2(location, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                        path, "create group " + name),
+                H5Gclose);
+}
+
+std::string frame_number(std::size_t index) {
+  return frame_group(index).substr(std::string("/frames/").size());
+}
+
+}  // namespace
+
 std::string frame_group(std::size_t index) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "/frames/%06zu", index);
   return buffer;
 }
 
-// ---------------------------------------------------------------------------------------------
-// RunWriter.
-
 RunWriter::RunWriter(const std::string& out_dir)
-    : h5_path_(out_dir + "/run.h5"), xdmf_path_(out_dir + "/run.xdmf") {
+    : out_dir_(out_dir), h5_path_(out_dir + "/run.h5"), xdmf_path_(out_dir + "/run.xdmf") {
+  const std::filesystem::path frames = std::filesystem::path(out_dir) / "frames";
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
   if (error)
     throw std::runtime_error(out_dir + ": cannot create directory (" + error.message() + ")");
-  const QuietErrors quiet;
-  const Handle fapl = unlocked_access(h5_path_);
-  file_ = checked(H5Fcreate(h5_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), h5_path_,
-                  "create");
-  for (const char* group : {"/meta", "/frames", "/series"}) {
-    const Handle g(checked(H5Gcreate2(file_, group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                           h5_path_, std::string("create group ") + group),
-                   H5Gclose);
+  // An earlier run in this folder: its frame files would sit beside this run's.
+  std::filesystem::remove_all(frames, error);
+  if (!error) std::filesystem::create_directories(frames, error);
+  if (error) {
+    throw std::runtime_error(frames.string() + ": cannot create directory (" + error.message() +
+                             ")");
   }
-  flush_and_describe();
-}
-
-RunWriter::~RunWriter() {
-  if (file_ < 0) return;
   const QuietErrors quiet;
-  H5Fclose(file_);  // a destructor cannot throw; every frame was flushed when written
+  write_index();
 }
 
-void RunWriter::flush_and_describe() {
-  checked(H5Fflush(file_, H5F_SCOPE_LOCAL), h5_path_, "flush");
-  // After the flush: the XDMF never names a dataset that is not on disk yet.
-  write_xdmf(xdmf_path_, "run.h5", frames_);
+void RunWriter::write_index() const {
+  write_whole_file(h5_path_, [&](hid_t root, const std::string& path) {
+    const Handle meta = create_group(root, "meta", path);
+    if (metadata_) {
+      const Metadata& m = *metadata_;
+      write_string_attribute(meta.get(), "scene", m.scene, path);
+      write_string_attribute(meta.get(), "method", m.method, path);
+      write_string_attribute(meta.get(), "git_commit", m.git_commit, path);
+      write_double_attribute(meta.get(), "spacing", m.spacing, path);
+      write_string_attribute(meta.get(), "boundary_names", m.boundary_names, path);
+      write_string_dataset(meta.get(), "scene_toml", m.scene_toml, path);
+    }
+    const Handle frames = create_group(root, "frames", path);
+    for (const XdmfFrame& frame : frames_) {
+      checked(H5Lcreate_external(frame.file.c_str(), "/", frames.get(), frame.name.c_str(),
+                                 H5P_DEFAULT, H5P_DEFAULT),
+              path, "link frame " + frame.name);
+    }
+    const Handle series = create_group(root, "series", path);
+    for (std::size_t k = 0; k < series_names_.size(); ++k) {
+      const std::string name = dataset_name(series_names_[k]);
+      // Two names that differ only by '/' share a dataset: the later one is kept.
+      if (link_exists(series.get(), name)) {
+        checked(H5Ldelete(series.get(), name.c_str(), H5P_DEFAULT), path, "delete " + name);
+      }
+      write_dataset(series.get(), name, series_columns_[k], series_columns_[k].size(), 0, path);
+    }
+  });
+  // After run.h5: the XDMF never names a frame that run.h5 does not.
+  write_xdmf(xdmf_path_, frames_);
 }
 
 void RunWriter::write_metadata(const std::string& scene_name, const std::string& method,
@@ -378,133 +408,120 @@ void RunWriter::write_metadata(const std::string& scene_name, const std::string&
                                const std::string& git_commit, double spacing,
                                const std::vector<std::string>& boundary_names) {
   const QuietErrors quiet;
-  // Written again on a second call: start from an empty group.
-  checked(H5Ldelete(file_, "/meta", H5P_DEFAULT), h5_path_, "delete /meta");
-  const Handle meta(checked(H5Gcreate2(file_, "/meta", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                            h5_path_, "create group /meta"),
-                    H5Gclose);
-  write_string_attribute(meta.get(), "scene", scene_name, h5_path_);
-  write_string_attribute(meta.get(), "method", method, h5_path_);
-  write_string_attribute(meta.get(), "git_commit", git_commit, h5_path_);
-  write_double_attribute(meta.get(), "spacing", spacing, h5_path_);
-  std::string names;
-  for (const std::string& name : boundary_names) names += (names.empty() ? "" : "\n") + name;
-  write_string_attribute(meta.get(), "boundary_names", names, h5_path_);
-  write_string_dataset(meta.get(), "scene_toml", resolved_scene_toml, h5_path_);
-  checked(H5Fflush(file_, H5F_SCOPE_LOCAL), h5_path_, "flush");
+  Metadata m{scene_name, method, resolved_scene_toml, git_commit, {}, spacing};
+  for (const std::string& name : boundary_names) {
+    m.boundary_names += (m.boundary_names.empty() ? "" : "\n") + name;
+  }
+  metadata_ = std::move(m);
+  write_index();
 }
 
 void RunWriter::write_frame(double time, const Particles& particles,
                             const FrameGeometry& geometry) {
   const QuietErrors quiet;
   check_sizes(particles, h5_path_);
-  if (!frames_.empty() && frames_.back().time == time) {
-    // Same time as the previous frame: replace it.
-    frames_.pop_back();
-    checked(H5Ldelete(file_, frame_group(frames_.size()).c_str(), H5P_DEFAULT), h5_path_,
-            "delete " + frame_group(frames_.size()));
-  }
-  const std::string name = frame_group(frames_.size());
-  const std::size_t n = particles.size();
-  const Handle group(checked(H5Gcreate2(file_, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                             h5_path_, "create group " + name),
-                     H5Gclose);
-  const hid_t g = group.get();
-  write_double_attribute(g, "time", time, h5_path_);
+  // Same time as the previous frame: replace it (its file is renamed over).
+  if (!frames_.empty() && frames_.back().time == time) frames_.pop_back();
 
   XdmfFrame frame;
   frame.time = time;
-  frame.group = name;
-  frame.n_points = n;
-  const auto vector3 = [&](const std::string& field, const std::vector<Vec2>& values) {
-    write_dataset(g, field, rows_of_vec2(values), n, 3, h5_path_);
-  };
-  const auto tensor = [&](const std::string& field, const std::vector<Mat3>& values) {
-    write_dataset(g, field, rows_of_mat3(values), n, 9, h5_path_);
-    frame.fields.push_back({field, "Tensor", 9, "Float", 8});
-  };
-  const auto scalar = [&](const std::string& field, const std::vector<double>& values) {
-    write_dataset(g, field, values, n, 0, h5_path_);
-    frame.fields.push_back({field, "Scalar", 1, "Float", 8});
-  };
-  const auto integer = [&](const std::string& field, const std::vector<std::int32_t>& values) {
-    write_dataset(g, field, values, n, 0, h5_path_);
-    frame.fields.push_back({field, "Scalar", 1, "Int", 4});
-  };
+  frame.name = frame_number(frames_.size());
+  frame.file = "frames/" + frame.name + ".h5";
+  const std::size_t n = particles.size();
+  write_whole_file(out_dir_ + "/" + frame.file, [&](hid_t g, const std::string& path) {
+    write_double_attribute(g, "time", time, path);
+    const auto vector3 = [&](const std::string& field, const std::vector<Vec2>& values) {
+      write_dataset(g, field, rows_of_vec2(values), n, 3, path);
+    };
+    const auto tensor = [&](const std::string& field, const std::vector<Mat3>& values) {
+      write_dataset(g, field, rows_of_mat3(values), n, 9, path);
+      frame.fields.push_back({field, "Tensor", 9, "Float", 8});
+    };
+    const auto scalar = [&](const std::string& field, const std::vector<double>& values) {
+      write_dataset(g, field, values, n, 0, path);
+      frame.fields.push_back({field, "Scalar", 1, "Float", 8});
+    };
+    const auto integer = [&](const std::string& field, const std::vector<std::int32_t>& values) {
+      write_dataset(g, field, values, n, 0, path);
+      frame.fields.push_back({field, "Scalar", 1, "Int", 4});
+    };
 
-  std::vector<std::int32_t> vertices(n);
-  for (std::size_t i = 0; i < n; ++i) vertices[i] = static_cast<std::int32_t>(i);
-  write_dataset(g, frame.vertices, vertices, n, 0, h5_path_);
-  vector3("position", particles.position);
-  vector3("velocity", particles.velocity);
-  frame.fields.push_back({"velocity", "Vector", 3, "Float", 8});
-  vector3("displacement", particles.displacement);
-  frame.fields.push_back({"displacement", "Vector", 3, "Float", 8});
-  tensor("stress", particles.stress);
-  tensor("strain", particles.strain);
-  scalar("mass", particles.mass);
-  scalar("volume", particles.volume);
-  scalar("density", particles.density);
-  integer("body", particles.body);
-  integer("material", particles.material);
+    std::vector<std::int32_t> vertices(n);
+    for (std::size_t i = 0; i < n; ++i) vertices[i] = static_cast<std::int32_t>(i);
+    write_dataset(g, frame.vertices, vertices, n, 0, path);
+    frame.n_points = n;
+    vector3("position", particles.position);
+    vector3("velocity", particles.velocity);
+    frame.fields.push_back({"velocity", "Vector", 3, "Float", 8});
+    vector3("displacement", particles.displacement);
+    frame.fields.push_back({"displacement", "Vector", 3, "Float", 8});
+    tensor("stress", particles.stress);
+    tensor("strain", particles.strain);
+    scalar("mass", particles.mass);
+    scalar("volume", particles.volume);
+    scalar("density", particles.density);
+    integer("body", particles.body);
+    integer("material", particles.material);
 
-  std::vector<double> pressure(n), q(n), equivalent_strain(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    pressure[i] = -mean_stress(particles.stress[i]);  // p = -tr(sigma)/3, compression positive
-    q[i] = von_mises(particles.stress[i]);            // q = sqrt(3 J2)
-    const Mat3 e = deviator(particles.strain[i]);
-    equivalent_strain[i] = std::sqrt(2.0 / 3.0 * contract(e, e));  // sqrt(2/3 e:e)
-  }
-  scalar("pressure", pressure);
-  scalar("von_mises", q);
-  scalar("equivalent_strain", equivalent_strain);
-
-  const InternalVariables& internal = particles.internal;
-  std::vector<double> values(n);
-  for (std::size_t k = 0; k < internal.n_variables(); ++k) {
+    std::vector<double> pressure(n), q(n), equivalent_strain(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const std::int32_t material = particles.material[i];
-      const bool known = material >= 0 && static_cast<std::size_t>(material) < internal.slot.size();
-      values[i] = known ? internal.value(i, material, k) : std::nan("");
+      pressure[i] = -mean_stress(particles.stress[i]);  // p = -tr(sigma)/3, compression positive
+      q[i] = von_mises(particles.stress[i]);            // q = sqrt(3 J2)
+      const Mat3 e = deviator(particles.strain[i]);
+      equivalent_strain[i] = std::sqrt(2.0 / 3.0 * contract(e, e));  // sqrt(2/3 e:e)
     }
-    scalar(internal_dataset_name(internal.names[k]), values);
-  }
+    scalar("pressure", pressure);
+    scalar("von_mises", q);
+    scalar("equivalent_strain", equivalent_strain);
 
-  const BoundaryLines& lines = geometry.boundaries;
-  if (!lines.segments.empty()) {
-    frame.n_boundary_points = lines.points.size();
-    frame.n_boundary_segments = lines.segments.size();
-    write_dataset(g, "boundary_points", rows_of_vec2(lines.points), lines.points.size(), 3,
-                  h5_path_);
-    write_dataset(g, "boundary_segments", flat(lines.segments), lines.segments.size(), 2, h5_path_);
-    write_dataset(g, "boundary", lines.owner, lines.owner.size(), 0, h5_path_);
-  }
-  if (geometry.triangles && !geometry.triangles->empty()) {
-    const std::vector<MeshTriangle>& triangles = *geometry.triangles;
-    const std::vector<MeshEdge> edges = surface_edges(triangles);
-    frame.n_triangles = triangles.size();
-    frame.n_surface_edges = edges.size();
-    write_dataset(g, "triangles", flat(triangles), triangles.size(), 3, h5_path_);
-    write_dataset(g, "surface_edges", flat(edges), edges.size(), 2, h5_path_);
-  }
+    const InternalVariables& internal = particles.internal;
+    std::vector<double> values(n);
+    for (std::size_t k = 0; k < internal.n_variables(); ++k) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::int32_t material = particles.material[i];
+        const bool known =
+            material >= 0 && static_cast<std::size_t>(material) < internal.slot.size();
+        values[i] = known ? internal.value(i, material, k) : std::nan("");
+      }
+      scalar(internal_dataset_name(internal.names[k]), values);
+    }
 
+    const BoundaryLines& lines = geometry.boundaries;
+    if (!lines.segments.empty()) {
+      frame.n_boundary_points = lines.points.size();
+      frame.n_boundary_segments = lines.segments.size();
+      write_dataset(g, "boundary_points", rows_of_vec2(lines.points), lines.points.size(), 3, path);
+      write_dataset(g, "boundary_segments", flat(lines.segments), lines.segments.size(), 2, path);
+      write_dataset(g, "boundary", lines.owner, lines.owner.size(), 0, path);
+    }
+    if (geometry.triangles && !geometry.triangles->empty()) {
+      const std::vector<MeshTriangle>& triangles = *geometry.triangles;
+      const std::vector<MeshEdge> edges = surface_edges(triangles);
+      frame.n_triangles = triangles.size();
+      frame.n_surface_edges = edges.size();
+      write_dataset(g, "triangles", flat(triangles), triangles.size(), 3, path);
+      write_dataset(g, "surface_edges", flat(edges), edges.size(), 2, path);
+    }
+  });
   frames_.push_back(std::move(frame));
-  flush_and_describe();
+  write_index();
+}
+
+void RunWriter::set_series(const std::vector<std::string>& names,
+                           const std::vector<std::vector<double>>& columns) {
+  if (names.size() != columns.size()) {
+    throw std::runtime_error(h5_path_ + ": series of " + std::to_string(names.size()) +
+                             " names for " + std::to_string(columns.size()) + " columns");
+  }
+  series_names_ = names;
+  series_columns_ = columns;
 }
 
 void RunWriter::write_series(const std::vector<std::string>& names,
                              const std::vector<std::vector<double>>& columns) {
-  if (names.size() != columns.size()) {
-    throw std::runtime_error(h5_path_ + ": write_series got " + std::to_string(names.size()) +
-                             " names for " + std::to_string(columns.size()) + " columns");
-  }
+  set_series(names, columns);
   const QuietErrors quiet;
-  const Handle series(
-      checked(H5Gopen2(file_, "/series", H5P_DEFAULT), h5_path_, "open group /series"), H5Gclose);
-  for (std::size_t k = 0; k < names.size(); ++k) {
-    write_extendible(series.get(), dataset_name(names[k]), columns[k], h5_path_);
-  }
-  checked(H5Fflush(file_, H5F_SCOPE_LOCAL), h5_path_, "flush");
+  write_index();
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -2,11 +2,21 @@
 // What a run writes besides metrics.json: OUT/run.h5 with the particle frames, the time series of
 // the measures and the run's metadata, and OUT/run.xdmf describing the frames for ParaView.
 //
+// Files
+//   OUT/frames/NNNNNN.h5  one file per frame, written to NNNNNN.h5.tmp, closed, then renamed:
+//                         a frame file that exists is complete.
+//   OUT/run.h5            the index, rebuilt in run.h5.tmp and renamed over run.h5 after every
+//                         frame and series write: it is always a whole file (a process killed
+//                         during an in-place HDF5 flush can lose a group's index; issue 17).
+//   OUT/run.xdmf          replaced (temporary + rename) after run.h5.
+//
 // run.h5 layout
 //   /meta                 attributes scene, method, git_commit (strings), spacing (m),
 //                         boundary_names (the walls then rigid bodies, one per line);
 //                         dataset scene_toml (the resolved scene, one string)
-//   /frames/NNNNNN        attribute time (s); datasets, n = particles:
+//   /frames/NNNNNN        external link to frames/NNNNNN.h5:/ (HDF5 and h5py follow it, relative
+//                         to run.h5's folder), whose root holds: attribute time (s); datasets,
+//                         n = particles:
 //       position, velocity, displacement   n x 3 (z = 0: plane problems in XYZ geometry)
 //       stress, strain                     n x 9 (full 3x3, row-major; tension positive)
 //       mass, volume, density              n
@@ -20,15 +30,16 @@
 //         boundary k (int32: index of the wall, then rigid body, in /meta boundary_names order)
 //       the SPFEM mesh in use (absent for SPH): triangles t x 3 and surface_edges e x 2 (int32,
 //         particle rows; the surface edges are those of one triangle)
-//   /series/<name>        1-D, one per measure column ("time" first), rewritten at each call
+//   /series/<name>        1-D, one per measure column ("time" first), the latest full columns
 //
-// Every write_frame / write_series ends with H5Fflush and a rewritten run.xdmf, so a run that
-// stops at any point leaves a readable pair holding every frame so far. The writer opens run.h5
-// without HDF5 file locking, so ParaView or h5py can read it while the run goes on.
+// A run that stops at any point, SIGKILL included, leaves a run.h5 and run.xdmf that name only
+// complete frame files. Files are opened without HDF5 file locking, so ParaView or h5py can read
+// while the run goes on (a reader holds the run.h5 it opened; the next one is a new file).
 
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,10 +52,10 @@ namespace duet {
 
 class RunWriter {
  public:
-  /// Creates `out_dir` if needed, truncates out_dir/run.h5 and writes an empty out_dir/run.xdmf.
-  /// Throws std::runtime_error naming the path on any HDF5 or file failure (as every method does).
+  /// Creates `out_dir` and out_dir/frames if needed (removing an earlier run's frame files there)
+  /// and writes an empty run.h5 and run.xdmf. Throws std::runtime_error naming the path on any
+  /// HDF5 or file failure (as every method does).
   explicit RunWriter(const std::string& out_dir);
-  ~RunWriter();
   RunWriter(const RunWriter&) = delete;
   RunWriter& operator=(const RunWriter&) = delete;
 
@@ -52,13 +63,18 @@ class RunWriter {
                       const std::string& resolved_scene_toml, const std::string& git_commit,
                       double spacing, const std::vector<std::string>& boundary_names = {});
 
-  /// Appends frame /frames/NNNNNN (NNNNNN = number of frames so far). A frame at the same time as
-  /// the previous one replaces it (the driver always writes the final state, which may coincide
-  /// with the last output time).
-  /// `geometry`: the walls and rigid bodies and the mesh shown with the particles.
+  /// Appends frame NNNNNN (NNNNNN = number of frames so far): its file, then the index. A frame at
+  /// the same time as the previous one replaces it (the driver always writes the final state, which
+  /// may coincide with the last output time). `geometry`: the walls and rigid bodies and the mesh
+  /// shown with the particles.
   void write_frame(double time, const Particles& particles, const FrameGeometry& geometry = {});
 
-  /// Writes (or rewrites) /series/<names[k]> = columns[k]; names and columns have equal length.
+  /// Holds /series/<names[k]> = columns[k] (names and columns of equal length) for the next
+  /// rewrite of the index (the next frame): one rewrite per output instead of two.
+  void set_series(const std::vector<std::string>& names,
+                  const std::vector<std::vector<double>>& columns);
+
+  /// set_series, then rewrites the index now.
   void write_series(const std::vector<std::string>& names,
                     const std::vector<std::vector<double>>& columns);
 
@@ -67,11 +83,19 @@ class RunWriter {
   const std::string& xdmf_path() const { return xdmf_path_; }
 
  private:
-  void flush_and_describe();
+  struct Metadata {
+    std::string scene, method, scene_toml, git_commit, boundary_names;
+    double spacing = 0.0;
+  };
+  /// Rebuilds run.h5 from what this writer holds, then run.xdmf.
+  void write_index() const;
 
+  std::string out_dir_;
   std::string h5_path_;
   std::string xdmf_path_;
-  std::int64_t file_ = -1;  // hid_t
+  std::optional<Metadata> metadata_;
+  std::vector<std::string> series_names_;
+  std::vector<std::vector<double>> series_columns_;
   std::vector<XdmfFrame> frames_;
 };
 
@@ -109,7 +133,7 @@ struct RunMetadata {
 };
 RunMetadata read_metadata(const std::string& path);
 
-/// Name of frame `index` inside run.h5: "/frames/000042".
+/// Name of frame `index` inside run.h5: "/frames/000042" (a link to frames/000042.h5).
 std::string frame_group(std::size_t index);
 
 }  // namespace duet

@@ -38,11 +38,12 @@ std::string dimensions(std::size_t rows, int columns) {
   return columns == 1 ? std::to_string(rows) : std::to_string(rows) + " " + std::to_string(columns);
 }
 
-std::string data_item(const std::string& h5_file_name, const std::string& dataset, std::size_t rows,
+/// Dataset `dataset` at the root of the frame's file.
+std::string data_item(const XdmfFrame& frame, const std::string& dataset, std::size_t rows,
                       int columns, const std::string& number_type, int precision) {
   return "<DataItem Dimensions=\"" + dimensions(rows, columns) + "\" NumberType=\"" + number_type +
          "\" Precision=\"" + std::to_string(precision) + "\" Format=\"HDF\">" +
-         xml_escape(h5_file_name) + ":" + xml_escape(dataset) + "</DataItem>";
+         xml_escape(frame.file) + ":/" + xml_escape(dataset) + "</DataItem>";
 }
 
 std::string time_text(double time) {
@@ -55,35 +56,30 @@ std::string time_text(double time) {
 
 namespace {
 
-std::string frame_name(const XdmfFrame& frame) {
-  return frame.group.substr(frame.group.find_last_of('/') + 1);
-}
-
 /// Topology of `cells` cells of `per_cell` nodes from dataset `connectivity` of the frame.
-std::string topology(const std::string& h5, const XdmfFrame& frame, const std::string& type,
+std::string topology(const XdmfFrame& frame, const std::string& type,
                      const std::string& connectivity, std::size_t cells, int per_cell) {
   std::string x = "    <Topology TopologyType=\"" + type + "\" NumberOfElements=\"" +
                   std::to_string(cells) + "\" NodesPerElement=\"" + std::to_string(per_cell) +
                   "\">\n";
-  x += "     " + data_item(h5, frame.group + "/" + connectivity, cells, per_cell, "Int", 4) + "\n";
+  x += "     " + data_item(frame, connectivity, cells, per_cell, "Int", 4) + "\n";
   x += "    </Topology>\n";
   return x;
 }
 
-std::string geometry(const std::string& h5, const XdmfFrame& frame, const std::string& dataset,
-                     std::size_t points) {
+std::string geometry(const XdmfFrame& frame, const std::string& dataset, std::size_t points) {
   return "    <Geometry GeometryType=\"XYZ\">\n     " +
-         data_item(h5, frame.group + "/" + dataset, points, 3, "Float", 8) + "\n    </Geometry>\n";
+         data_item(frame, dataset, points, 3, "Float", 8) + "\n    </Geometry>\n";
 }
 
-std::string point_fields(const std::string& h5, const XdmfFrame& frame) {
+std::string point_fields(const XdmfFrame& frame) {
   std::string x;
   for (const XdmfField& field : frame.fields) {
     x += "    <Attribute Name=\"" + xml_escape(field.name) + "\" AttributeType=\"" +
          field.attribute_type + "\" Center=\"Node\">\n";
     x += "     " +
-         data_item(h5, frame.group + "/" + field.name, frame.n_points, field.components,
-                   field.number_type, field.precision) +
+         data_item(frame, field.name, frame.n_points, field.components, field.number_type,
+                   field.precision) +
          "\n";
     x += "    </Attribute>\n";
   }
@@ -91,7 +87,7 @@ std::string point_fields(const std::string& h5, const XdmfFrame& frame) {
 }
 
 std::string grid_open(const std::string& prefix, const XdmfFrame& frame) {
-  return "   <Grid Name=\"" + prefix + "_" + frame_name(frame) +
+  return "   <Grid Name=\"" + prefix + "_" + frame.name +
          "\" GridType=\"Uniform\">\n    <Time Value=\"" + time_text(frame.time) + "\"/>\n";
 }
 
@@ -107,8 +103,7 @@ std::string collection(const std::string& name, const std::vector<XdmfFrame>& fr
 
 }  // namespace
 
-std::string xdmf_document(const std::string& h5_file_name, const std::vector<XdmfFrame>& frames) {
-  const std::string& h5 = h5_file_name;
+std::string xdmf_document(const std::vector<XdmfFrame>& frames) {
   std::string x;
   x += "<?xml version=\"1.0\" ?>\n";
   x += "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n";
@@ -120,45 +115,42 @@ std::string xdmf_document(const std::string& h5_file_name, const std::vector<Xdm
     // One vertex cell per particle. The connectivity is explicit: ParaView's Xdmf3 readers make
     // no cells from a Polyvertex topology without it (only its XDMF (2) reader does).
     x += grid_open("frame", frame) +
-         topology(h5, frame, "Polyvertex", frame.vertices, frame.n_points, 1) +
-         geometry(h5, frame, frame.geometry, frame.n_points) + point_fields(h5, frame) +
-         "   </Grid>\n";
+         topology(frame, "Polyvertex", frame.vertices, frame.n_points, 1) +
+         geometry(frame, frame.geometry, frame.n_points) + point_fields(frame) + "   </Grid>\n";
   }
   x += "  </Grid>\n";
   x += collection("boundaries", frames, [&](const XdmfFrame& frame) -> std::string {
     if (frame.n_boundary_segments == 0) return "";
     return grid_open("boundaries", frame) +
-           topology(h5, frame, "Polyline", "boundary_segments", frame.n_boundary_segments, 2) +
-           geometry(h5, frame, "boundary_points", frame.n_boundary_points) +
+           topology(frame, "Polyline", "boundary_segments", frame.n_boundary_segments, 2) +
+           geometry(frame, "boundary_points", frame.n_boundary_points) +
            "    <Attribute Name=\"boundary\" AttributeType=\"Scalar\" Center=\"Cell\">\n     " +
-           data_item(h5, frame.group + "/boundary", frame.n_boundary_segments, 1, "Int", 4) +
+           data_item(frame, "boundary", frame.n_boundary_segments, 1, "Int", 4) +
            "\n    </Attribute>\n   </Grid>\n";
   });
   x += collection("mesh", frames, [&](const XdmfFrame& frame) -> std::string {
     if (frame.n_triangles == 0) return "";
     return grid_open("mesh", frame) +
-           topology(h5, frame, "Triangle", "triangles", frame.n_triangles, 3) +
-           geometry(h5, frame, frame.geometry, frame.n_points) + point_fields(h5, frame) +
-           "   </Grid>\n";
+           topology(frame, "Triangle", "triangles", frame.n_triangles, 3) +
+           geometry(frame, frame.geometry, frame.n_points) + point_fields(frame) + "   </Grid>\n";
   });
   x += collection("surface", frames, [&](const XdmfFrame& frame) -> std::string {
     if (frame.n_surface_edges == 0) return "";
     return grid_open("surface", frame) +
-           topology(h5, frame, "Polyline", "surface_edges", frame.n_surface_edges, 2) +
-           geometry(h5, frame, frame.geometry, frame.n_points) + "   </Grid>\n";
+           topology(frame, "Polyline", "surface_edges", frame.n_surface_edges, 2) +
+           geometry(frame, frame.geometry, frame.n_points) + "   </Grid>\n";
   });
   x += " </Domain>\n";
   x += "</Xdmf>\n";
   return x;
 }
 
-void write_xdmf(const std::string& path, const std::string& h5_file_name,
-                const std::vector<XdmfFrame>& frames) {
+void write_xdmf(const std::string& path, const std::vector<XdmfFrame>& frames) {
   const std::string temporary = path + ".tmp";
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error(temporary + ": cannot open for writing");
-    out << xdmf_document(h5_file_name, frames);
+    out << xdmf_document(frames);
     out.flush();
     if (!out) throw std::runtime_error(temporary + ": write failed");
   }

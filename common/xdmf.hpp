@@ -1,7 +1,7 @@
 #pragma once
-// The XDMF 2 description of the frames in run.h5, so that ParaView (its "XDMF Reader") opens
-// run.xdmf directly. Up to four temporal collections, each a block in ParaView, whose DataItems
-// point at the HDF5 datasets "run.h5:/frames/NNNNNN/<dataset>":
+// The XDMF 2 description of a run's frames, so that ParaView (its "XDMF Reader") opens run.xdmf
+// directly. Up to four temporal collections, each a block in ParaView, whose DataItems point at
+// the datasets of the frames' own files, "frames/NNNNNN.h5:/<dataset>":
 //   particles   Polyvertex grid of the particles with every field
 //   boundaries  Polyline grid of the walls and rigid bodies at the frame's time (cell field
 //               `boundary`: index of the wall, then rigid body, in the scene's order)
@@ -26,9 +26,10 @@ struct XdmfField {
 
 struct XdmfFrame {
   double time = 0.0;
-  std::string group;  // "/frames/000003"
+  std::string file;  // HDF5 file of the frame relative to the .xdmf: "frames/000003.h5"
+  std::string name;  // "000003": names the frame's grids
   std::size_t n_points = 0;
-  std::string geometry = "position";  // n x 3 dataset in the group
+  std::string geometry = "position";  // n x 3 dataset at the file's root
   std::string vertices = "vertices";  // n int32 dataset 0 .. n-1: one vertex cell per particle
   std::vector<XdmfField> fields;
   std::size_t n_boundary_points = 0;    // dataset boundary_points, n x 3
@@ -37,12 +38,11 @@ struct XdmfFrame {
   std::size_t n_surface_edges = 0;      // surface_edges, n x 2 int32 (particle rows)
 };
 
-/// The whole document for `frames`, whose datasets live in `h5_file_name` (relative to the .xdmf).
-std::string xdmf_document(const std::string& h5_file_name, const std::vector<XdmfFrame>& frames);
+/// The whole document for `frames`.
+std::string xdmf_document(const std::vector<XdmfFrame>& frames);
 
 /// Writes the document to `path` through a temporary file and a rename, so a reader (or a run
 /// that stops) never sees a half-written file. Throws std::runtime_error naming the path.
-void write_xdmf(const std::string& path, const std::string& h5_file_name,
-                const std::vector<XdmfFrame>& frames);
+void write_xdmf(const std::string& path, const std::vector<XdmfFrame>& frames);
 
 }  // namespace duet

@@ -1,7 +1,7 @@
 // SIGKILL at any moment (issue 17): every frame that run.xdmf lists, i.e. every frame completed
-// before the kill (the writer flushes run.h5 after each frame and then replaces run.xdmf by a
-// rename), opens and reads whole. The run writes a frame every few steps so that kills land
-// inside frame writes as often as between them.
+// before the kill (each frame is a file of its own renamed into place when closed; run.h5, the
+// index linking them, and then run.xdmf are replaced by a rename), opens and reads whole. The run
+// writes a frame every few steps so that kills land inside frame writes as often as between them.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>

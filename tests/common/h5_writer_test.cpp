@@ -93,18 +93,30 @@ std::size_t count_of(const std::string& text, const std::string& what) {
   return n;
 }
 
-/// Walks run.xdmf in `dir`: every DataItem must name an existing dataset of run.h5 whose
-/// dimensions equal its Dimensions; attribute types must match the column count; the Topology's
-/// NumberOfElements must equal the rows of the geometry. Returns the number of DataItems checked.
-std::size_t check_xdmf_against_h5(const fs::path& dir) {
-  const std::string xdmf = read_text(dir / "run.xdmf");
-  const fs::path h5 = dir / "run.h5";
+struct OpenFile {
+  hid_t id;
+  ~OpenFile() {
+    if (id >= 0) H5Fclose(id);
+  }
+};
+
+hid_t open_unlocked(const fs::path& path) {
   const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_file_locking(fapl, false, true);
-  const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, fapl);
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
   H5Pclose(fapl);
-  EXPECT_GE(file, 0) << h5;
-  if (file < 0) return 0;
+  return file;
+}
+
+/// Walks run.xdmf in `dir`: every DataItem must name an existing dataset at the root of a frame
+/// file frames/NNNNNN.h5 that run.h5 links as /frames/NNNNNN, with the dimensions of its
+/// Dimensions; attribute types must match the column count; the Topology's NumberOfElements must
+/// equal the rows of the geometry. Returns the number of DataItems checked.
+std::size_t check_xdmf_against_h5(const fs::path& dir) {
+  const std::string xdmf = read_text(dir / "run.xdmf");
+  const hid_t index = open_unlocked(dir / "run.h5");
+  EXPECT_GE(index, 0) << dir / "run.h5";
+  if (index < 0) return 0;
 
   std::size_t checked = 0;
   std::string enclosing;            // start tag of the Attribute or Geometry around the item
@@ -121,14 +133,22 @@ std::size_t check_xdmf_against_h5(const fs::path& dir) {
       const std::size_t text_begin = at + tag.size();
       const std::string text = xdmf.substr(text_begin, xdmf.find('<', text_begin) - text_begin);
       const std::size_t colon = text.find(':');
-      EXPECT_EQ(text.substr(0, colon), "run.h5");
+      const std::string frame_file = text.substr(0, colon);  // frames/NNNNNN.h5
+      EXPECT_EQ(frame_file.rfind("frames/", 0), 0u) << text;
+      if (frame_file.rfind("frames/", 0) != 0) continue;
+      const std::string number = frame_file.substr(7, frame_file.size() - 7 - 3);
+      EXPECT_GT(H5Lexists(index, ("/frames/" + number).c_str(), H5P_DEFAULT), 0) << text;
       const std::string dataset = text.substr(colon + 1);
-      EXPECT_EQ(dataset.rfind("/frames/", 0), 0u) << dataset;
+      EXPECT_EQ(dataset.rfind('/'), 0u) << dataset;  // at the file's root
       const std::vector<hsize_t> stated = parse_dimensions(attribute(tag, "Dimensions"));
 
-      EXPECT_GT(H5Lexists(file, dataset.c_str(), H5P_DEFAULT), 0) << dataset;
+      const OpenFile opened{open_unlocked(dir / frame_file)};
+      const hid_t file = opened.id;
+      EXPECT_GE(file, 0) << frame_file;
+      if (file < 0) continue;
+      EXPECT_GT(H5Lexists(file, dataset.c_str(), H5P_DEFAULT), 0) << text;
       const hid_t set = H5Dopen2(file, dataset.c_str(), H5P_DEFAULT);
-      EXPECT_GE(set, 0) << dataset;
+      EXPECT_GE(set, 0) << text;
       if (set < 0) continue;
       const hid_t space = H5Dget_space(set);
       std::vector<hsize_t> actual(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
@@ -166,7 +186,7 @@ std::size_t check_xdmf_against_h5(const fs::path& dir) {
       ++checked;
     }
   }
-  H5Fclose(file);
+  H5Fclose(index);
   return checked;
 }
 
@@ -285,20 +305,41 @@ TEST(RunWriter, PairIsValidAfterEachFrameBeforeTheWriterCloses) {
   fs::create_directories(snapshot);
   RunWriter writer((dir / "out").string());
   const Particles particles = make_particles(3, 2.0);
-  // Act: one frame, then copy the pair as a run killed now would leave it.
+  // Act: one frame, then copy the folder as a run killed now would leave it.
   writer.write_frame(0.5, particles);
-  fs::copy_file(dir / "out" / "run.h5", snapshot / "run.h5");
-  fs::copy_file(dir / "out" / "run.xdmf", snapshot / "run.xdmf");
-  // Assert: the copy (another file to HDF5, so nothing is shared with the open writer) holds the
+  fs::copy(dir / "out", snapshot, fs::copy_options::recursive);
+  // Assert: the copy (elsewhere: run.h5 links its frames relative to its own folder) holds the
   // frame, and its XDMF names only datasets that exist.
   ASSERT_EQ(count_frames((snapshot / "run.h5").string()), 1u);
   const Frame copied = read_frame((snapshot / "run.h5").string(), 0);
   EXPECT_EQ(copied.time, 0.5);
   EXPECT_EQ(copied.position[2].x(), particles.position[2].x());
   EXPECT_EQ(check_xdmf_against_h5(snapshot), 16u);
-  // A second read-only handle on the live file works too, while the writer keeps it open.
+  // The live folder reads too, while the writer goes on.
   const Frame live = read_frame(writer.h5_path(), 0);
   EXPECT_EQ(live.stress[1](0, 1), particles.stress[1](0, 1));
+}
+
+TEST(RunWriter, AnEarlierRunsFrameFilesInTheFolderAreRemoved) {
+  // Arrange: a run of three frames in the folder.
+  const fs::path dir = test_directory();
+  {
+    RunWriter writer(dir.string());
+    for (const double t : {0.0, 0.1, 0.2}) writer.write_frame(t, make_particles(2, t));
+  }
+  // Act: a second run in the same folder writes one.
+  {
+    RunWriter writer(dir.string());
+    writer.write_frame(0.0, make_particles(2, 5.0));
+  }
+  // Assert: only its frame is there, in run.h5 and on disk.
+  EXPECT_EQ(count_frames((dir / "run.h5").string()), 1u);
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "frames")) {
+    ++files;
+    EXPECT_EQ(entry.path().filename(), "000000.h5");
+  }
+  EXPECT_EQ(files, 1u);
 }
 
 TEST(RunWriter, FrameAtTheSameTimeReplacesThePreviousOne) {
