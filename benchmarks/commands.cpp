@@ -5,6 +5,7 @@
 #include <memory>
 #include <thread>
 
+#include "benchmarks/accuracy_summary.hpp"
 #include "benchmarks/driver.hpp"
 #include "benchmarks/element_demo.hpp"
 #include "benchmarks/listing_commands.hpp"
@@ -338,6 +339,26 @@ void add_collect_command(CLI::App& app, int& exit_code) {
       const Grid grid = read_grid(dir);
       std::cout << write_grid_reports(grid, dir) << "results: " << dir << '\n';
     }
+    exit_code = 0;
+  });
+}
+
+void add_summary_command(CLI::App& app, int& exit_code) {
+  auto dirs = std::make_shared<std::vector<std::string>>();
+  auto target = std::make_shared<double>(0.05);
+  auto out = std::make_shared<std::string>("runs/summary");
+  CLI::App* cmd = app.add_subcommand(
+      "summary",
+      "accuracy against cost over several benchmarks: from the folders of duet compare, one "
+      "error-against-wall-time chart per benchmark (summary.png) and a table of the coarsest "
+      "spacing meeting the target per method and the cheapest method (summary.md, summary.csv)");
+  cmd->add_option("grid_dir", *dirs, "the --out folders of duet compare, one per benchmark")
+      ->required();
+  cmd->add_option("--target", *target, "scored error to meet (default 0.05)")
+      ->check(CLI::Range(1e-9, 1e9));
+  cmd->add_option("--out", *out, "output folder (default runs/summary)");
+  cmd->callback([dirs, target, out, &exit_code] {
+    std::cout << write_accuracy_summary(*dirs, *target, *out) << "results: " << *out << '\n';
     exit_code = 0;
   });
 }

@@ -13,5 +13,6 @@ void add_stability_command(CLI::App& app, int& exit_code);
 void add_demo_command(CLI::App& app, int& exit_code);
 void add_plot_command(CLI::App& app, int& exit_code);
 void add_collect_command(CLI::App& app, int& exit_code);
+void add_summary_command(CLI::App& app, int& exit_code);
 
 }  // namespace duet

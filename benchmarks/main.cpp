@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   duet::add_demo_command(app, exit_code);
   duet::add_plot_command(app, exit_code);
   duet::add_collect_command(app, exit_code);
+  duet::add_summary_command(app, exit_code);
   duet::add_srf_command(app, exit_code);
   duet::add_listing_commands(app, exit_code);
   try {

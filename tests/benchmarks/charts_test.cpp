@@ -77,6 +77,15 @@ TEST_F(Charts, StabilityGrowsToListLongReasons) {
   EXPECT_LT(size.height, 640u);
 }
 
+TEST_F(Charts, SummaryGridOfBenchmarks) {
+  const fs::path png = out_ / "summary.png";
+  EXPECT_EQ(draw("summary.py", {kFixtures + "summary.csv", png.string(), "0.05"}), "");
+  const PngSize size = png_size(png);
+  // Four benchmarks: 3 columns x 2 lines of 3.6 x 3.0 in, 0.5 in for the legend, at 110 dpi.
+  EXPECT_NEAR(size.width, 1188, 1);
+  EXPECT_NEAR(size.height, 715, 1);
+}
+
 TEST_F(Charts, ElementChart) {
   const fs::path png = out_ / "element.png";
   EXPECT_EQ(draw("element.py", {kFixtures + "element.csv", png.string(), "drucker-prager"}), "");

@@ -1,10 +1,12 @@
-// compare.csv / compare.md and the --target choice (benchmarks/reports.cpp, run_summary.cpp).
+// compare.csv / compare.md, the --target choice and the summary over benchmarks
+// (benchmarks/reports.cpp, run_summary.cpp, accuracy_summary.cpp).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "benchmarks/accuracy_summary.hpp"
 #include "benchmarks/reports.hpp"
 #include "benchmarks/run_summary.hpp"
 
@@ -86,6 +88,30 @@ TEST(CompareMarkdown, ReportsTargetChoicePerMethod) {
                                         make_run("sph", 0.0025, 0.01, 5.0)};
   const std::string md = compare_markdown(runs, 0.05);
   EXPECT_NE(md.find("- sph: spacing 0.0025 m"), std::string::npos);
+}
+
+TEST(AccuracySummary, NamesPerBenchmarkTheCoarsestSpacingAndTheCheapestMethod) {
+  // footing: espfem meets 5 % only at 0.1 m (20 s), ispfem already at 0.25 m (3 s); sph fails
+  // everywhere. collapse: nobody meets 5 %.
+  BenchmarkRuns footing{"footing", "", {}};
+  footing.runs = {make_run("sph", 0.25, 0.0, 1.5, "failed"), make_run("espfem", 0.25, 0.10, 2.8),
+                  make_run("espfem", 0.1, 0.04, 20.0), make_run("ispfem", 0.25, 0.03, 3.0),
+                  make_run("ispfem", 0.1, 0.02, 70.0)};
+  BenchmarkRuns collapse{"collapse", "", {make_run("sph", 0.01, 0.2, 5.0)}};
+  const std::string md = summary_markdown({footing, collapse}, 0.05);
+  EXPECT_NE(md.find("| footing | sph | 0 of 1 | none | | | none completed: non-finite stress |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| footing | espfem | 2 of 2 | 0.1 m | 20 | 4 % | 4 % (dp 0.1 m, 20 s) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| footing | ispfem | 2 of 2 | 0.25 m | 3 | 3 % | 2 % (dp 0.1 m, 70 s) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| footing | ispfem (dp 0.25 m) | 3 | espfem, 20 s | 6.67 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| collapse | no method meets the target |"), std::string::npos) << md;
 }
 
 }  // namespace
