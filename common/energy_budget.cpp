@@ -1,6 +1,7 @@
 #include "common/energy_budget.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "common/geometry.hpp"
 #include "common/kinetic_energy.hpp"
@@ -96,6 +97,33 @@ Json EnergyBudget::to_json() const {
   j["kinetic_over_input_max_time"] = peak_ratio_time_;
   j["incomplete"] = incomplete_ ? Json(*incomplete_) : Json();
   return j;
+}
+
+}  // namespace duet
+
+namespace duet {
+
+void EnergyBudget::save_state(StateBag& state) const {
+  put(state, "energy_budget",
+      std::vector<double>{initial_kinetic_, initial_elastic_, gravity_work_, boundary_work_,
+                          load_work_, floor_, time_, boundary_power_, load_power_, peak_ratio_,
+                          peak_ratio_time_});
+}
+
+void EnergyBudget::restore_state(const StateBag& state) {
+  const std::vector<double>& v = entry(state, "energy_budget");
+  if (v.size() != 11) throw std::runtime_error("the saved state's energy_budget has another size");
+  initial_kinetic_ = v[0];
+  initial_elastic_ = v[1];
+  gravity_work_ = v[2];
+  boundary_work_ = v[3];
+  load_work_ = v[4];
+  floor_ = v[5];
+  time_ = v[6];
+  boundary_power_ = v[7];
+  load_power_ = v[8];
+  peak_ratio_ = v[9];
+  peak_ratio_time_ = v[10];
 }
 
 }  // namespace duet

@@ -18,6 +18,7 @@
 #include "common/scene.hpp"
 #include "common/scene_loads.hpp"
 #include "common/solver.hpp"
+#include "common/state_bag.hpp"
 
 namespace duet {
 
@@ -52,6 +53,10 @@ class EnergyBudget {
   double peak_ratio_time() const { return peak_ratio_time_; }
 
   Json to_json() const;
+
+  /// The integrals so far into / from a frame's state (`duet run --resume`), key "energy_budget".
+  void save_state(StateBag& state) const;
+  void restore_state(const StateBag& state);
 
  private:
   double boundary_power(double time, const std::vector<Reaction>& reactions) const;

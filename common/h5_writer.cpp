@@ -305,6 +305,38 @@ double read_double_attribute(hid_t location, const std::string& name, const std:
   return value;
 }
 
+/// Names of the links in `group`, in name order.
+std::vector<std::string> link_names(hid_t group, const std::string& path, const std::string& what) {
+  H5G_info_t info;
+  checked(H5Gget_info(group, &info), path, "H5Gget_info(" + what + ")");
+  std::vector<std::string> names;
+  for (hsize_t k = 0; k < info.nlinks; ++k) {
+    const ssize_t length =
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
+    if (length < 0) fail(path, "link name in " + what);
+    std::string link(static_cast<std::size_t>(length) + 1, '\0');
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, link.data(), link.size(),
+                       H5P_DEFAULT);
+    link.resize(static_cast<std::size_t>(length));
+    names.push_back(std::move(link));
+  }
+  return names;
+}
+
+bool is_dataset(hid_t location, const std::string& name) {
+  H5O_info_t info;
+  return H5Oget_info_by_name(location, name.c_str(), &info, H5P_DEFAULT) >= 0 &&
+         info.type == H5O_TYPE_DATASET;
+}
+
+bool is_integer(hid_t location, const std::string& name, const std::string& path) {
+  const Handle set(
+      checked(H5Dopen2(location, name.c_str(), H5P_DEFAULT), path, "open dataset " + name),
+      H5Dclose);
+  const Handle type(checked(H5Dget_type(set.get()), path, "type of " + name), H5Tclose);
+  return H5Tget_class(type.get()) == H5T_INTEGER;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -371,6 +403,68 @@ RunWriter::RunWriter(const std::string& out_dir)
   write_index();
 }
 
+namespace {
+
+/// The XDMF description of a frame file written before (a resumed run's earlier frames): its
+/// datasets by shape, as write_frame lists them (fields in name order).
+XdmfFrame describe_frame_file(const std::string& out_dir, std::size_t index) {
+  XdmfFrame frame;
+  frame.name = frame_number(index);
+  frame.file = "frames/" + frame.name + ".h5";
+  const std::string path = out_dir + "/" + frame.file;
+  const Handle file = open_for_reading(path);
+  const Handle root(checked(H5Gopen2(file.get(), "/", H5P_DEFAULT), path, "open /"), H5Gclose);
+  frame.time = read_double_attribute(root.get(), "time", path);
+  const auto rows = [&](const std::string& name) {
+    const Handle set(
+        checked(H5Dopen2(root.get(), name.c_str(), H5P_DEFAULT), path, "open dataset " + name),
+        H5Dclose);
+    return dataset_dims(set.get(), path, name);
+  };
+  frame.n_points = static_cast<std::size_t>(rows(frame.geometry).at(0));
+  for (const std::string& name : link_names(root.get(), path, "/")) {
+    if (!is_dataset(root.get(), name)) continue;
+    const std::vector<hsize_t> dims = rows(name);
+    if (name == "boundary_points") {
+      frame.n_boundary_points = static_cast<std::size_t>(dims.at(0));
+    } else if (name == "boundary_segments") {
+      frame.n_boundary_segments = static_cast<std::size_t>(dims.at(0));
+    } else if (name == "triangles") {
+      frame.n_triangles = static_cast<std::size_t>(dims.at(0));
+    } else if (name == "surface_edges") {
+      frame.n_surface_edges = static_cast<std::size_t>(dims.at(0));
+    } else if (name == frame.geometry || name == frame.vertices || name == "boundary") {
+      continue;
+    } else if (dims.size() == 2 && dims[1] == 3) {
+      frame.fields.push_back({name, "Vector", 3, "Float", 8});
+    } else if (dims.size() == 2 && dims[1] == 9) {
+      frame.fields.push_back({name, "Tensor", 9, "Float", 8});
+    } else if (dims.size() == 1) {
+      const bool integer = is_integer(root.get(), name, path);
+      frame.fields.push_back({name, "Scalar", 1, integer ? "Int" : "Float", integer ? 4 : 8});
+    }
+  }
+  return frame;
+}
+
+}  // namespace
+
+RunWriter::RunWriter(const std::string& out_dir, ContinueAfter from)
+    : out_dir_(out_dir), h5_path_(out_dir + "/run.h5"), xdmf_path_(out_dir + "/run.xdmf") {
+  const QuietErrors quiet;
+  for (std::size_t k = 0; k <= from.frame; ++k) frames_.push_back(describe_frame_file(out_dir, k));
+  // Frames after it (and a frame file half-written when the run stopped) are this run's to write.
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(out_dir + "/frames", error)) {
+    const std::string name = entry.path().filename().string();
+    const bool kept = name.size() == 9 && name.compare(6, 3, ".h5") == 0 &&
+                      std::stoul(name.substr(0, 6)) <= from.frame &&
+                      name.find_first_not_of("0123456789") == 6;
+    if (!kept) std::filesystem::remove(entry.path(), error);
+  }
+  if (error) throw std::runtime_error(out_dir + "/frames: " + error.message());
+}
+
 void RunWriter::write_index() const {
   write_whole_file(h5_path_, [&](hid_t root, const std::string& path) {
     const Handle meta = create_group(root, "meta", path);
@@ -416,8 +510,8 @@ void RunWriter::write_metadata(const std::string& scene_name, const std::string&
   write_index();
 }
 
-void RunWriter::write_frame(double time, const Particles& particles,
-                            const FrameGeometry& geometry) {
+void RunWriter::write_frame(double time, const Particles& particles, const FrameGeometry& geometry,
+                            const StateBag* state) {
   const QuietErrors quiet;
   check_sizes(particles, h5_path_);
   // Same time as the previous frame: replace it (its file is renamed over).
@@ -502,6 +596,12 @@ void RunWriter::write_frame(double time, const Particles& particles,
       write_dataset(g, "triangles", flat(triangles), triangles.size(), 3, path);
       write_dataset(g, "surface_edges", flat(edges), edges.size(), 2, path);
     }
+    if (state) {
+      const Handle group = create_group(g, "state", path);
+      for (const auto& [key, values] : *state) {
+        write_dataset(group.get(), dataset_name(key), values, values.size(), 0, path);
+      }
+    }
   });
   frames_.push_back(std::move(frame));
   write_index();
@@ -553,21 +653,80 @@ Frame read_frame(const std::string& path, std::size_t index) {
     }
   }
 
-  H5G_info_t info;
-  checked(H5Gget_info(group.get(), &info), path, "H5Gget_info(" + name + ")");
-  for (hsize_t k = 0; k < info.nlinks; ++k) {
-    const ssize_t length = H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, k,
-                                              nullptr, 0, H5P_DEFAULT);
-    if (length < 0) fail(path, "link name in " + name);
-    std::string link(static_cast<std::size_t>(length) + 1, '\0');
-    H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, k, link.data(), link.size(),
-                       H5P_DEFAULT);
-    link.resize(static_cast<std::size_t>(length));
+  for (const std::string& link : link_names(group.get(), path, name)) {
+    if (!is_dataset(group.get(), link)) continue;  // the state group
     std::vector<hsize_t> dims;
     std::vector<double> values = read_doubles(group.get(), link, path, &dims);
     if (dims.size() == 1 && link != "vertices") frame.scalars.emplace(link, std::move(values));
   }
   return frame;
+}
+
+StateBag read_state(const std::string& path, std::size_t index) {
+  const QuietErrors quiet;
+  const Handle file = open_for_reading(path);
+  const std::string name = frame_group(index);
+  if (!link_exists(file.get(), "/frames") || !link_exists(file.get(), name)) {
+    throw std::runtime_error(path + ": no frame " + std::to_string(index) + " (" + name + ")");
+  }
+  StateBag state;
+  const std::string group_name = name + "/state";
+  if (!link_exists(file.get(), group_name)) return state;
+  const Handle group(checked(H5Gopen2(file.get(), group_name.c_str(), H5P_DEFAULT), path,
+                             "open group " + group_name),
+                     H5Gclose);
+  for (const std::string& key : link_names(group.get(), path, group_name)) {
+    state[key] = read_doubles(group.get(), key, path);
+  }
+  return state;
+}
+
+void read_particle_state(const std::string& path, std::size_t index, Particles& particles) {
+  const QuietErrors quiet;
+  const Handle file = open_for_reading(path);
+  const std::string name = frame_group(index);
+  if (!link_exists(file.get(), "/frames") || !link_exists(file.get(), name)) {
+    throw std::runtime_error(path + ": no frame " + std::to_string(index) + " (" + name + ")");
+  }
+  const Handle group(
+      checked(H5Gopen2(file.get(), name.c_str(), H5P_DEFAULT), path, "open group " + name),
+      H5Gclose);
+  const std::size_t n = particles.size();
+  const auto values = [&](const std::string& field, std::size_t columns) {
+    std::vector<double> v = read_doubles(group.get(), field, path);
+    if (v.size() != n * columns) {
+      throw std::runtime_error(path + ": " + name + "/" + field + " holds " +
+                               std::to_string(v.size() / columns) + " particles, not " +
+                               std::to_string(n));
+    }
+    return v;
+  };
+  const auto vectors = [&](const std::string& field, std::vector<Vec2>& out) {
+    const std::vector<double> v = values(field, 3);
+    for (std::size_t i = 0; i < n; ++i) out[i] = Vec2(v[3 * i], v[3 * i + 1]);
+  };
+  const auto tensors = [&](const std::string& field, std::vector<Mat3>& out) {
+    const std::vector<double> v = values(field, 9);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) out[i](r, c) = v[9 * i + 3 * r + c];
+      }
+    }
+  };
+  vectors("position", particles.position);
+  vectors("velocity", particles.velocity);
+  vectors("displacement", particles.displacement);
+  tensors("stress", particles.stress);
+  tensors("strain", particles.strain);
+  particles.mass = values("mass", 1);
+  particles.volume = values("volume", 1);
+  particles.density = values("density", 1);
+  const std::vector<double> body = values("body", 1);
+  const std::vector<double> material = values("material", 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    particles.body[i] = static_cast<std::int32_t>(body[i]);
+    particles.material[i] = static_cast<std::int32_t>(material[i]);
+  }
 }
 
 std::size_t count_frames(const std::string& path) {

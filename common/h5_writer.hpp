@@ -30,6 +30,8 @@
 //         boundary k (int32: index of the wall, then rigid body, in /meta boundary_names order)
 //       the SPFEM mesh in use (absent for SPH): triangles t x 3 and surface_edges e x 2 (int32,
 //         particle rows; the surface edges are those of one triangle)
+//       state/<key>   what `duet run --resume` needs besides these fields (common/state_bag.hpp),
+//                     in the frames of a method that can resume
 //   /series/<name>        1-D, one per measure column ("time" first), the latest full columns
 //
 // A run that stops at any point, SIGKILL included, leaves a run.h5 and run.xdmf that name only
@@ -45,6 +47,7 @@
 
 #include "common/frame_geometry.hpp"
 #include "common/particles.hpp"
+#include "common/state_bag.hpp"
 #include "common/tensor.hpp"
 #include "common/xdmf.hpp"
 
@@ -56,6 +59,14 @@ class RunWriter {
   /// and writes an empty run.h5 and run.xdmf. Throws std::runtime_error naming the path on any
   /// HDF5 or file failure (as every method does).
   explicit RunWriter(const std::string& out_dir);
+
+  /// Opens the run in `out_dir` to go on after frame `frame` (`duet run --resume`): frames 0 ..
+  /// frame are kept (their files read back for the XDMF), later frame files are removed; the
+  /// index is rewritten at the next write. Throws std::runtime_error naming the path.
+  struct ContinueAfter {
+    std::size_t frame = 0;
+  };
+  RunWriter(const std::string& out_dir, ContinueAfter from);
   RunWriter(const RunWriter&) = delete;
   RunWriter& operator=(const RunWriter&) = delete;
 
@@ -67,7 +78,9 @@ class RunWriter {
   /// the same time as the previous one replaces it (the driver always writes the final state, which
   /// may coincide with the last output time). `geometry`: the walls and rigid bodies and the mesh
   /// shown with the particles.
-  void write_frame(double time, const Particles& particles, const FrameGeometry& geometry = {});
+  /// `state`: what a resumed run needs besides the particle fields, written under /state.
+  void write_frame(double time, const Particles& particles, const FrameGeometry& geometry = {},
+                   const StateBag* state = nullptr);
 
   /// Holds /series/<names[k]> = columns[k] (names and columns of equal length) for the next
   /// rewrite of the index (the next frame): one rewrite per output instead of two.
@@ -117,6 +130,14 @@ struct Frame {
 
 /// Frame `index` of the run.h5 at `path`. Throws std::runtime_error naming the path.
 Frame read_frame(const std::string& path, std::size_t index);
+
+/// /state of frame `index` of the run.h5 at `path` (empty when the frame has none).
+StateBag read_state(const std::string& path, std::size_t index);
+
+/// The particle arrays frame `index` holds (position, velocity, displacement, stress, strain,
+/// mass, volume, density, body, material; exact) into `particles`, which must have the frame's
+/// particle count. Throws std::runtime_error naming the path.
+void read_particle_state(const std::string& path, std::size_t index, Particles& particles);
 
 /// Number of frames in the run.h5 at `path`.
 std::size_t count_frames(const std::string& path);

@@ -244,3 +244,23 @@ Json MeasureRecorder::accuracy() const {
 }
 
 }  // namespace duet
+
+namespace duet {
+
+void MeasureRecorder::save_state(StateBag& state) const {
+  put_lists(state, "measures.columns", columns_);
+  put_lists(state, "measures.velocity", velocity_);
+}
+
+void MeasureRecorder::restore_state(const StateBag& state) {
+  std::vector<std::vector<double>> columns, velocity;
+  get_lists(state, "measures.columns", columns);
+  get_lists(state, "measures.velocity", velocity);
+  if (columns.size() != columns_.size() || velocity.size() != velocity_.size()) {
+    throw std::runtime_error("the saved state's measures are not this scene's");
+  }
+  columns_ = std::move(columns);
+  velocity_ = std::move(velocity);
+}
+
+}  // namespace duet

@@ -9,6 +9,7 @@
 #include "common/particles.hpp"
 #include "common/scene.hpp"
 #include "common/solver.hpp"
+#include "common/state_bag.hpp"
 
 namespace duet {
 
@@ -47,6 +48,10 @@ class MeasureRecorder {
   /// {"<measure>": {"value", "reference", "rel_error", "source", "tolerance", "passed"}} for every
   /// reference of the scene.
   Json accuracy() const;
+
+  /// The samples so far into / from a frame's state (`duet run --resume`), keys "measures.*".
+  void save_state(StateBag& state) const;
+  void restore_state(const StateBag& state);
 
  private:
   const Scene& scene_;

@@ -13,6 +13,7 @@
 #include "common/frame_geometry.hpp"
 #include "common/json.hpp"
 #include "common/particles.hpp"
+#include "common/state_bag.hpp"
 #include "common/tensor.hpp"
 #include "common/timers.hpp"
 
@@ -68,6 +69,18 @@ class Solver {
   /// false: this run solves for equilibrium (ispfem quasi-static): its velocities are increments
   /// over a load step, not inertia, so the kinetic-energy checks and warnings do not apply.
   virtual bool inertial() const { return true; }
+
+  /// `duet run --resume`: empty when this solver can write into each frame all it carries from
+  /// one step to the next, else why not (the run is then refused before any work).
+  virtual std::string resume_refusal() const {
+    return "this method does not save its state in the frames";
+  }
+  /// What this solver carries from one step to the next (keys "solver.*"), after a step.
+  virtual void save_state(StateBag& /*state*/) const {}
+  /// Restores save_state's entries on a solver initialised on the same scene, `particles` as the
+  /// frame holds them: the run then goes on as if it had never stopped. Throws std::runtime_error
+  /// when an entry is missing or does not fit.
+  virtual void restore_state(const StateBag& /*state*/, const Particles& /*particles*/) {}
 };
 
 struct MethodInfo {

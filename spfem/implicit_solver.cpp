@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -567,6 +568,86 @@ Json ImplicitSolver::diagnostics() const {
   j["smallest_angle"] = m.smallest_angle;
   j["wall_strip_edges"] = static_cast<long>(discretisation_.wall_strips().edges.size());
   return j;
+}
+
+}  // namespace duet::spfem
+
+namespace duet::spfem {
+
+void ImplicitSolver::save_state(StateBag& state) const {
+  put_integers(state, "solver.released", released_);
+  // 64 contact bits per node as two exact halves (a double holds 53 bits).
+  std::vector<double> low(rigid_contact_.size()), high(rigid_contact_.size());
+  for (std::size_t i = 0; i < rigid_contact_.size(); ++i) {
+    low[i] = static_cast<double>(rigid_contact_[i] & 0xffffffffu);
+    high[i] = static_cast<double>(rigid_contact_[i] >> 32);
+  }
+  put(state, "solver.rigid_contact_low", low);
+  put(state, "solver.rigid_contact_high", high);
+  put(state, "solver.previous_u", previous_u_);
+  put(state, "solver.acceleration", acceleration_);
+  put(state, "solver.boundary_force", boundary_force_);
+  put(state, "solver.scalars",
+      std::vector<double>{rigid_contact_initialised_ ? 1.0 : 0.0, dynamic_started_ ? 1.0 : 0.0,
+                          previous_increment_, increment_});
+  const NewtonCounters& c = counters_;
+  put(state, "solver.counters",
+      std::vector<double>{double(c.increments), double(c.cuts), double(c.iterations),
+                          double(c.iterations_max), double(c.active_set_passes), double(c.releases),
+                          double(c.attachments), double(c.factorisations),
+                          double(c.line_search_halvings), c.increment_min, c.increment_max,
+                          double(c.constrained_nodes_max)});
+  put_lists(state, "solver.residual_history", c.residual_history);
+  discretisation_.save_state(state, "solver.mesh_counters");
+}
+
+void ImplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
+  const auto sized = [&](const std::string& key, std::size_t size) {
+    if (entry(state, key).size() != size) {
+      throw std::runtime_error("the saved state's '" + key + "' is not of this scene's " +
+                               std::to_string(nodes) + " nodes");
+    }
+  };
+  sized("solver.released", nodes);
+  sized("solver.rigid_contact_low", nodes);
+  sized("solver.rigid_contact_high", nodes);
+  sized("solver.previous_u", 2 * nodes);
+  sized("solver.acceleration", 2 * nodes);
+  sized("solver.boundary_force", 2 * boundary_force_.size());
+  sized("solver.scalars", 4);
+  sized("solver.counters", 12);
+  get_integers(state, "solver.released", released_);
+  const std::vector<double>& low = entry(state, "solver.rigid_contact_low");
+  const std::vector<double>& high = entry(state, "solver.rigid_contact_high");
+  rigid_contact_.resize(nodes);
+  for (std::size_t i = 0; i < nodes; ++i) {
+    rigid_contact_[i] =
+        static_cast<std::uint64_t>(high[i]) << 32 | static_cast<std::uint64_t>(low[i]);
+  }
+  get(state, "solver.previous_u", previous_u_);
+  get(state, "solver.acceleration", acceleration_);
+  get(state, "solver.boundary_force", boundary_force_);
+  const std::vector<double>& v = entry(state, "solver.scalars");
+  rigid_contact_initialised_ = v[0] != 0.0;
+  dynamic_started_ = v[1] != 0.0;
+  previous_increment_ = v[2];
+  increment_ = v[3];
+  const std::vector<double>& k = entry(state, "solver.counters");
+  NewtonCounters& c = counters_;
+  c.increments = static_cast<long>(k[0]);
+  c.cuts = static_cast<long>(k[1]);
+  c.iterations = static_cast<long>(k[2]);
+  c.iterations_max = static_cast<int>(k[3]);
+  c.active_set_passes = static_cast<long>(k[4]);
+  c.releases = static_cast<long>(k[5]);
+  c.attachments = static_cast<long>(k[6]);
+  c.factorisations = static_cast<long>(k[7]);
+  c.line_search_halvings = static_cast<long>(k[8]);
+  c.increment_min = k[9];
+  c.increment_max = k[10];
+  c.constrained_nodes_max = static_cast<long>(k[11]);
+  get_lists(state, "solver.residual_history", c.residual_history);
+  discretisation_.restore_state(state, "solver.mesh_counters");
 }
 
 }  // namespace duet::spfem

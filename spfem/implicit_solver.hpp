@@ -82,6 +82,13 @@ class ImplicitSolver {
   const NewtonCounters& counters() const { return counters_; }
   Json diagnostics() const;
 
+  /// `duet run --resume` (common/solver.hpp): what an increment carries to the next (its size,
+  /// the contacts held and let go, the predictor's and Newmark's vectors, the counters), keys
+  /// "solver.*". Refused where the mesh is kept between increments.
+  std::string resume_refusal() const { return discretisation_.resume_refusal(); }
+  void save_state(StateBag& state) const;
+  void restore_state(const StateBag& state, std::size_t nodes);
+
  private:
   struct Attempt {
     bool converged = false;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 
 #include "common/input_error.hpp"
 
@@ -86,6 +87,36 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
 void NodalDiscretisation::refill(const std::vector<Vec2>& x) {
   const double layer = layer_depth();
   refill_smoothing_cells(mesh_, x, cells_, layer, layer > 0.0 ? &wall_strips_ : nullptr);
+}
+
+}  // namespace duet::spfem
+
+namespace duet::spfem {
+
+std::string NodalDiscretisation::resume_refusal() const {
+  if (options_.remesh == Remesh::every_step) return "";
+  return "spfem.remesh = angle keeps a mesh from step to step that the frames do not hold; "
+         "resume needs spfem.remesh = every-step";
+}
+
+void NodalDiscretisation::save_state(StateBag& state, const std::string& key) const {
+  const MeshCounters& c = counters_;
+  put(state, key,
+      std::vector<double>{double(c.remeshes), double(c.forced_remeshes), double(c.triangles),
+                          double(c.surface_nodes), double(c.components),
+                          double(c.isolated_nodes_max), c.smallest_angle});
+}
+
+void NodalDiscretisation::restore_state(const StateBag& state, const std::string& key) {
+  const std::vector<double>& v = entry(state, key);
+  if (v.size() != 7) throw std::runtime_error("the saved state's '" + key + "' has another size");
+  counters_.remeshes = static_cast<long>(v[0]);
+  counters_.forced_remeshes = static_cast<long>(v[1]);
+  counters_.triangles = static_cast<std::size_t>(v[2]);
+  counters_.surface_nodes = static_cast<std::size_t>(v[3]);
+  counters_.components = static_cast<int>(v[4]);
+  counters_.isolated_nodes_max = static_cast<std::size_t>(v[5]);
+  counters_.smallest_angle = v[6];
 }
 
 }  // namespace duet::spfem

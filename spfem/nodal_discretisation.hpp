@@ -8,9 +8,11 @@
 // masses or time integration.
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "common/scene.hpp"
+#include "common/state_bag.hpp"
 #include "common/tensor.hpp"
 #include "spfem/alpha_mesh.hpp"
 #include "spfem/node_contact.hpp"
@@ -78,6 +80,12 @@ class NodalDiscretisation {
   const WallStrips& wall_strips() const { return wall_strips_; }
   WallStrips& wall_strips() { return wall_strips_; }
   const MeshCounters& counters() const { return counters_; }
+  /// Empty when the mesh is rebuilt at every update (spfem.remesh = every-step), so the counters
+  /// are all a resumed run needs of it; else why a frame cannot resume it.
+  std::string resume_refusal() const;
+  /// The mesh counters into / from a frame's state under `key`.
+  void save_state(StateBag& state, const std::string& key) const;
+  void restore_state(const StateBag& state, const std::string& key);
 
  private:
   duet::SpfemOptions options_;
