@@ -164,10 +164,24 @@ std::string write_accuracy_summary(const std::vector<std::string>& grid_dirs, do
       throw InputError(dir + ": a " + grid.kind +
                        " grid; duet summary takes the folders of duet compare");
     }
-    BenchmarkRuns b{grid.scene_name, dir, collect_runs(grid, dir)};
-    all.insert(all.end(), b.runs.begin(), b.runs.end());
-    benchmarks.push_back(std::move(b));
+    // Grids of one scene (a coarse and a finer one) are one benchmark; a method and spacing run
+    // in both counts once, as the later folder has it.
+    BenchmarkRuns* b = nullptr;
+    for (BenchmarkRuns& known : benchmarks) {
+      if (known.scene == grid.scene_name) b = &known;
+    }
+    if (!b) {
+      benchmarks.push_back({grid.scene_name, dir, {}});
+      b = &benchmarks.back();
+    }
+    for (RunSummary& run : collect_runs(grid, dir)) {
+      std::erase_if(b->runs, [&](const RunSummary& r) {
+        return r.method == run.method && r.spacing == run.spacing;
+      });
+      b->runs.push_back(std::move(run));
+    }
   }
+  for (const BenchmarkRuns& b : benchmarks) all.insert(all.end(), b.runs.begin(), b.runs.end());
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
   if (error) throw InputError(out_dir + ": cannot create the folder (" + error.message() + ")");

@@ -23,9 +23,10 @@ struct BenchmarkRuns {
 std::string summary_markdown(const std::vector<BenchmarkRuns>& benchmarks, double target);
 
 /// Collects the compare grids in `grid_dirs` (InputError naming a folder that holds no compare
-/// grid) and writes into `out_dir` summary.md, summary.csv (every run of every grid, the columns
-/// of compare.csv) and summary.png (benchmarks/plot/summary.py: one small error-against-cost
-/// chart per benchmark). Returns the Markdown.
+/// grid; grids of one scene make one benchmark, a method and spacing in two of them counted once,
+/// from the later folder) and writes into `out_dir` summary.md, summary.csv (every run of every
+/// grid, the columns of compare.csv) and summary.png (benchmarks/plot/summary.py: one small
+/// error-against-cost chart per benchmark). Returns the Markdown.
 std::string write_accuracy_summary(const std::vector<std::string>& grid_dirs, double target,
                                    const std::string& out_dir);
 

@@ -3,7 +3,9 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <thread>
+#include <utility>
 
 #include "benchmarks/accuracy_summary.hpp"
 #include "benchmarks/driver.hpp"
@@ -14,8 +16,10 @@
 #include "benchmarks/reports.hpp"
 #include "benchmarks/run_grid.hpp"
 #include "benchmarks/scene_input.hpp"
+#include "common/h5_writer.hpp"
 #include "common/input_error.hpp"
 #include "common/interrupt.hpp"
+#include "common/json.hpp"
 #include "common/suggest.hpp"
 
 namespace duet {
@@ -68,7 +72,37 @@ struct RunArgs {
   bool force = false;
   bool no_plots = false;
   std::string field = "von_mises";
+  std::string resume;
 };
+
+/// The scene and method a run recorded (`duet run --resume DIR`), refused with the reason when
+/// DIR holds no run that can go on.
+std::pair<Scene, const MethodInfo*> recorded_run(const std::string& dir) {
+  const std::string h5 = dir + "/run.h5";
+  if (!std::filesystem::exists(h5)) {
+    throw InputError("--resume " + dir + ": no run.h5 there; expected the folder of a duet run");
+  }
+  const std::string metrics = dir + "/metrics.json";
+  if (std::filesystem::exists(metrics)) {
+    const Json m = read_json(metrics);
+    const Json* status = m.find("status");
+    const Json* end = m.find("end_time");
+    if (status && status->is_string() && status->string() == "completed") {
+      throw InputError("--resume " + dir + ": the run completed" +
+                       (end && end->is_number() ? " (t = " + format_number(end->number()) + " s)"
+                                                : std::string()) +
+                       "; nothing to go on with");
+    }
+  }
+  RunMetadata meta;
+  try {
+    meta = read_metadata(h5);
+  } catch (const std::runtime_error& e) {
+    throw InputError("--resume " + dir + ": " + e.what());
+  }
+  Scene scene = load_scene_checked_from_string(meta.scene_toml, h5 + ":/meta/scene_toml");
+  return {std::move(scene), &builtin_methods().find(meta.method)};
+}
 
 /// Draws a run's charts and lists them; a chart that cannot be drawn is reported, never fatal.
 void draw_run_charts(const std::string& run_dir, const std::string& field) {
@@ -93,8 +127,11 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->footer(
       "Scene keys: duet keys [SECTION]; soil models and their parameters: duet models [MODEL]; "
       "methods and their options: duet methods. Validate without running: duet check SCENE.");
-  cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
-  cmd->add_option("--method", args->method, "sph | espfem | ispfem")->required();
+  cmd->add_option("scene", args->scene, "scene file (TOML)");
+  cmd->add_option("--method", args->method, "sph | espfem | ispfem");
+  cmd->add_option("--resume", args->resume,
+                  "continue the interrupted or killed run in this folder from its last frame "
+                  "(no scene, method or --set: those the run recorded)");
   cmd->add_option("--spacing", args->spacing, "particle spacing dp (m), overrides the scene's");
   cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
   cmd->add_option("--out", args->out, "output folder (default runs/<scene>-<method>-dp<spacing>)");
@@ -105,14 +142,36 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--field", args->field,
                   "field the particle snapshots are coloured by (default von_mises)");
   cmd->callback([args, cmd, &exit_code] {
-    std::vector<std::string> overrides = args->sets;
-    if (cmd->count("--spacing") > 0) overrides.push_back(spacing_override(args->spacing));
-    const Scene scene = load_scene_checked(args->scene, overrides);
-    const MethodInfo& method = builtin_methods().find(args->method);
-    refuse_if_too_large(scene, method, args->force);
     RunOptions options;
-    options.out_dir = args->out.empty() ? default_run_dir(scene, method.name) : args->out;
     options.show_progress = !args->quiet;
+    std::optional<Scene> loaded;
+    const MethodInfo* chosen = nullptr;
+    if (!args->resume.empty()) {
+      if (!args->scene.empty() || !args->method.empty() || !args->sets.empty() ||
+          cmd->count("--spacing") > 0 || !args->out.empty()) {
+        throw InputError(
+            "--resume " + args->resume +
+            ": takes no scene, --method, --spacing, --set or --out; the run goes on in its folder "
+            "with the scene and method it recorded");
+      }
+      auto [scene, method] = recorded_run(args->resume);
+      loaded.emplace(std::move(scene));
+      chosen = method;
+      options.out_dir = args->resume;
+      options.resume = true;
+    } else {
+      if (args->scene.empty() || args->method.empty()) {
+        throw InputError("run: expected a scene file and --method (or --resume DIR)");
+      }
+      std::vector<std::string> overrides = args->sets;
+      if (cmd->count("--spacing") > 0) overrides.push_back(spacing_override(args->spacing));
+      loaded.emplace(load_scene_checked(args->scene, overrides));
+      chosen = &builtin_methods().find(args->method);
+      options.out_dir = args->out.empty() ? default_run_dir(*loaded, chosen->name) : args->out;
+    }
+    const Scene& scene = *loaded;
+    const MethodInfo& method = *chosen;
+    refuse_if_too_large(scene, method, args->force);
     prepare_output_folder(options.out_dir);
     const RunSummary summary = run_scene(scene, method, options);
     std::cout << compare_markdown({summary}, 0.0) << "results: " << options.out_dir << '\n';

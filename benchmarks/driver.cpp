@@ -24,6 +24,7 @@
 #include "common/measures.hpp"
 #include "common/progress.hpp"
 #include "common/run_checks.hpp"
+#include "common/state_bag.hpp"
 
 namespace duet {
 
@@ -96,6 +97,24 @@ Json failure_json(const Failure& f) {
   return j;
 }
 
+/// The frame a resumed run goes on from: the last one holding the state.
+struct ResumePoint {
+  std::size_t frame = 0;
+  double time = 0.0;
+  StateBag state;
+};
+
+ResumePoint find_resume_point(const std::string& out_dir) {
+  const std::string h5 = out_dir + "/run.h5";
+  for (std::size_t k = count_frames(h5); k-- > 0;) {
+    ResumePoint point{k, 0.0, read_state(h5, k)};
+    if (point.state.empty()) continue;
+    point.time = scalar(point.state, "driver.time");
+    return point;
+  }
+  throw InputError("--resume " + out_dir + ": no frame holds the state a run needs to go on");
+}
+
 }  // namespace
 
 RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOptions& options) {
@@ -105,6 +124,16 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   Particles particles = sample_bodies(scene);
   initialise_material_points(scene, particles);
   std::unique_ptr<Solver> solver = method.make(scene);
+  // Every frame carries the state where the solver can give it all (`duet run --resume`).
+  const bool keeps_state = solver->resume_refusal().empty();
+  std::optional<ResumePoint> resume;
+  if (options.resume) {
+    if (!keeps_state) {
+      throw InputError("--resume " + options.out_dir + ": " + method.name + ": " +
+                       solver->resume_refusal());
+    }
+    resume = find_resume_point(options.out_dir);
+  }
   std::optional<Failure> failure;
   try {
     // Gravity loading happens here (ispfem's increments, espfem's damped steps): it can fail.
@@ -113,7 +142,13 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     failure = Failure{std::string("before the clock started: ") + e.what(), 0.0, e.particle()};
   }
 
-  RunWriter writer(options.out_dir);
+  std::optional<RunWriter> writer_storage;
+  if (resume) {
+    writer_storage.emplace(options.out_dir, RunWriter::ContinueAfter{resume->frame});
+  } else {
+    writer_storage.emplace(options.out_dir);
+  }
+  RunWriter& writer = *writer_storage;
   std::vector<std::string> boundary_names;
   for (const Wall& w : scene.walls) boundary_names.push_back(w.name);
   for (const RigidBody& r : scene.rigid_bodies) boundary_names.push_back(r.name);
@@ -133,33 +168,86 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   long steps = 0;
   int interrupted_by = 0;  // the signal that ended the run, or 0
   bool output_failed = false;
+  double next_output = output_interval;
+  double next_sample = sample_interval;
+  double wall_before = 0.0;  // a resumed run: the wall time of the run up to its frame
   std::vector<Vec2> previous_position = particles.position;
+
+  // After initialise: a solver that settles the soil under gravity first (gravity-loading) starts
+  // the clock from that state (a resumed run has just repeated it: the same state as frame 0).
+  const StateChecks checks(scene, particles);
+  EnergyBudget budget(scene, particles, stored_elastic_energy(scene, particles));
+  KineticEnergyRecord energy;
+
+  // All the run carries from one step to the next, for a frame's /state.
+  const auto state_now = [&] {
+    StateBag state;
+    put(state, "driver.time", time);
+    put(state, "driver.steps", static_cast<double>(steps));
+    put(state, "driver.next_output", next_output);
+    put(state, "driver.next_sample", next_sample);
+    put(state, "driver.kinetic_energy",
+        std::vector<double>{energy.peak, energy.peak_time, energy.end});
+    put(state, "driver.wall_seconds",
+        wall_before +
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    put(state, "driver.internal", particles.internal.values);
+    measures.save_state(state);
+    budget.save_state(state);
+    solver->save_state(state);
+    return state;
+  };
   // A frame (and the series with it): a full disk or a quota ends the run, the frames written
   // before stay readable. A failure found before the write stays the run's reason.
   const auto write_output = [&](bool with_series) {
     ScopedTimer t(output_timers, Phase::output);
     try {
       if (with_series) writer.set_series(measures.names(), measures.columns());
-      writer.write_frame(time, particles, shown(time));
+      const std::optional<StateBag> state =
+          keeps_state ? std::optional<StateBag>(state_now()) : std::nullopt;
+      writer.write_frame(time, particles, shown(time), state ? &*state : nullptr);
     } catch (const std::exception& e) {
       output_failed = true;
       if (!failure) failure = Failure{std::string("writing the output failed: ") + e.what(), time};
     }
   };
 
-  write_output(false);
-  measures.sample(time, particles, solver->reactions());
+  if (resume) {
+    // The particles, the driver's counters and the solver as the frame holds them.
+    const StateBag& state = resume->state;
+    try {
+      read_particle_state(writer.h5_path(), resume->frame, particles);
+      std::vector<double> internal;
+      get(state, "driver.internal", internal);
+      if (internal.size() != particles.internal.values.size()) {
+        throw std::runtime_error("its internal variables are not this scene's");
+      }
+      particles.internal.values = std::move(internal);
+      time = scalar(state, "driver.time");
+      steps = static_cast<long>(scalar(state, "driver.steps"));
+      next_output = scalar(state, "driver.next_output");
+      next_sample = scalar(state, "driver.next_sample");
+      const std::vector<double>& k = entry(state, "driver.kinetic_energy");
+      if (k.size() != 3) throw std::runtime_error("its kinetic energy record has another size");
+      energy.peak = k[0];
+      energy.peak_time = k[1];
+      energy.end = k[2];
+      wall_before = scalar(state, "driver.wall_seconds");
+      measures.restore_state(state);
+      budget.restore_state(state);
+      solver->restore_state(state, particles);
+    } catch (const std::runtime_error& e) {
+      throw InputError("--resume " + options.out_dir + ": frame " + std::to_string(resume->frame) +
+                       ": " + e.what());
+    }
+    previous_position = particles.position;
+  } else {
+    write_output(false);
+    measures.sample(time, particles, solver->reactions());
+    energy.record(time, kinetic_energy(particles));
+  }
   std::optional<Progress> progress;
   if (options.show_progress) progress.emplace(end_time, std::cerr, isatty(2) != 0);
-  double next_output = output_interval;
-  double next_sample = sample_interval;
-
-  const StateChecks checks(scene, particles);
-  // After initialise: a solver that settles the soil under gravity first (gravity-loading) starts
-  // the clock from that state.
-  EnergyBudget budget(scene, particles, stored_elastic_energy(scene, particles));
-  KineticEnergyRecord energy;
-  energy.record(time, kinetic_energy(particles));
   while (time < end_time * (1.0 - 1e-12) && !failure) {
     previous_position = particles.position;
     const double previous_time = time;
@@ -197,9 +285,9 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       next_sample += sample_interval;
     }
     if (time >= next_output) {
+      next_output += output_interval;  // before the write: the frame's state holds the next one
       write_output(true);
       if (output_failed) break;
-      next_output += output_interval;
     }
     if (progress) progress->update(time, steps);
     if ((interrupted_by = pending_interrupt()) != 0) break;
@@ -221,11 +309,23 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   metrics["spacing"] = scene.spacing;
   metrics["particles"] = static_cast<long>(particles.size());
   metrics["steps"] = steps;
-  metrics["wall_seconds"] = wall;
+  metrics["wall_seconds"] = wall_before + wall;  // a resumed run: both parts
   metrics["status"] = status;
   metrics["failure"] = failure ? failure_json(*failure) : Json();
   metrics["end_time"] = time;
   if (interrupted_by) metrics["signal"] = static_cast<long>(interrupted_by);
+  // Whether `duet run --resume` can continue this run from its frames, and if not why.
+  metrics["resumable"] = keeps_state;
+  if (!keeps_state) metrics["resume_refusal"] = solver->resume_refusal();
+  if (resume) {
+    // timing and the output timer cover this process only
+    Json resumed = Json::object();
+    resumed["from_frame"] = static_cast<long>(resume->frame);
+    resumed["from_time"] = resume->time;
+    resumed["wall_seconds_before"] = wall_before;
+    resumed["wall_seconds_after"] = wall;
+    metrics["resumed"] = resumed;
+  }
   metrics["measures"] = measures.final_values();
   metrics["accuracy"] = measures.accuracy();
   Json timing = solver->timers().to_json();

@@ -16,6 +16,11 @@ namespace duet {
 struct RunOptions {
   std::string out_dir;
   bool show_progress = true;
+  /// Continue the run in out_dir from its last frame that holds the state (`duet run --resume`):
+  /// frames up to it are kept, the time, step count, measures, energy budget and the solver's
+  /// state are restored, and the run goes on as if it had never stopped. `scene` and `method`
+  /// must be those the run recorded.
+  bool resume = false;
 };
 
 /// Runs `scene` through `method`; never throws for numerical failure (it is reported in the

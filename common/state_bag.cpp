@@ -44,6 +44,25 @@ void get(const StateBag& bag, const std::string& key, std::vector<Vec2>& out) {
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = Vec2(v[2 * i], v[2 * i + 1]);
 }
 
+void put_bits(StateBag& bag, const std::string& key, const std::vector<std::uint64_t>& masks) {
+  std::vector<double>& v = bag[key];
+  v.resize(2 * masks.size());
+  for (std::size_t i = 0; i < masks.size(); ++i) {
+    v[2 * i] = static_cast<double>(masks[i] & 0xffffffffu);
+    v[2 * i + 1] = static_cast<double>(masks[i] >> 32);
+  }
+}
+
+void get_bits(const StateBag& bag, const std::string& key, std::vector<std::uint64_t>& masks) {
+  const std::vector<double>& v = entry(bag, key);
+  if (v.size() % 2 != 0) throw std::runtime_error("the saved state's '" + key + "' is not pairs");
+  masks.resize(v.size() / 2);
+  for (std::size_t i = 0; i < masks.size(); ++i) {
+    masks[i] =
+        static_cast<std::uint64_t>(v[2 * i + 1]) << 32 | static_cast<std::uint64_t>(v[2 * i]);
+  }
+}
+
 void put_lists(StateBag& bag, const std::string& key,
                const std::vector<std::vector<double>>& lists) {
   std::vector<double> lengths, values;

@@ -36,6 +36,10 @@ void get_integers(const StateBag& bag, const std::string& key, std::vector<Integ
   for (std::size_t i = 0; i < v.size(); ++i) out[i] = static_cast<Integer>(v[i]);
 }
 
+/// 64-bit masks (contact and attachment bits), each as two exact 32-bit halves (low, high).
+void put_bits(StateBag& bag, const std::string& key, const std::vector<std::uint64_t>& masks);
+void get_bits(const StateBag& bag, const std::string& key, std::vector<std::uint64_t>& masks);
+
 /// Lists of lists (Newton's residual history): lengths, then the values.
 void put_lists(StateBag& bag, const std::string& key,
                const std::vector<std::vector<double>>& lists);

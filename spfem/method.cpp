@@ -125,6 +125,11 @@ class EspfemMethod final : public Solver {
 
   Json diagnostics() const override { return solver_.diagnostics(); }
 
+  std::string resume_refusal() const override {
+    return "espfem moves and flips its triangulation from step to step, and the frames do not "
+           "hold the triangulation a step continues from (only ispfem resumes so far)";
+  }
+
   const std::vector<MeshTriangle>* mesh_triangles(const Particles& particles) override {
     return mesh_in_use(solver_.discretisation(), particles, preview_);
   }

@@ -47,6 +47,7 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
   }
   if (remesh) {
     build_alpha_mesh(x, o.alpha_factor * spacing_, mesh_);
+    if (canonical_order_) order_canonically(x.size(), mesh_);
     have_mesh_ = true;
     ++counters_.remeshes;
     counters_.triangles = mesh_.triangles.size();
@@ -105,6 +106,7 @@ void NodalDiscretisation::save_state(StateBag& state, const std::string& key) co
       std::vector<double>{double(c.remeshes), double(c.forced_remeshes), double(c.triangles),
                           double(c.surface_nodes), double(c.components),
                           double(c.isolated_nodes_max), c.smallest_angle});
+  put_bits(state, key + ".attached", wall_strips_.attached);
 }
 
 void NodalDiscretisation::restore_state(const StateBag& state, const std::string& key) {
@@ -117,6 +119,7 @@ void NodalDiscretisation::restore_state(const StateBag& state, const std::string
   counters_.components = static_cast<int>(v[4]);
   counters_.isolated_nodes_max = static_cast<std::size_t>(v[5]);
   counters_.smallest_angle = v[6];
+  get_bits(state, key + ".attached", wall_strips_.attached);
 }
 
 }  // namespace duet::spfem

@@ -57,6 +57,9 @@ class NodalDiscretisation {
   /// Keeps the boundary layer's discrete choices of the last update in later refills (true)
   /// or lets every fill choose again (false, the default; update() always chooses again).
   void freeze_layer_branches(bool frozen) { cells_.frozen_branches = frozen; }
+  /// Lists each new mesh's triangles in an order of the triangulation alone (order_canonically):
+  /// the implicit solver's increments then repeat exactly after `duet run --resume`.
+  void order_meshes_canonically(bool canonical) { canonical_order_ = canonical; }
 
   /// True when row k carries boundary-layer or wall-strip terms (a surface node, layer on).
   bool has_layer_terms(std::size_t k) const {
@@ -83,7 +86,8 @@ class NodalDiscretisation {
   /// Empty when the mesh is rebuilt at every update (spfem.remesh = every-step), so the counters
   /// are all a resumed run needs of it; else why a frame cannot resume it.
   std::string resume_refusal() const;
-  /// The mesh counters into / from a frame's state under `key`.
+  /// The mesh counters and the nodes the no-slip walls hold (wall_strips().attached, kept from
+  /// step to step) into / from a frame's state under `key`.
   void save_state(StateBag& state, const std::string& key) const;
   void restore_state(const StateBag& state, const std::string& key);
 
@@ -97,6 +101,7 @@ class NodalDiscretisation {
   RemeshTrigger remesh_trigger_;  // remesh = angle: the limits of the kept triangles
   WallStrips wall_strips_;        // no-slip (and free-slip) walls as strips of the smoothing
   bool have_mesh_ = false;
+  bool canonical_order_ = false;
   MeshCounters counters_;
 };
 

@@ -124,6 +124,11 @@ class SphMethod final : public Solver {
     return j;
   }
 
+  std::string resume_refusal() const override {
+    return "sph keeps its Verlet neighbour lists, their working order and the integrator's last "
+           "step from step to step, and the frames do not hold them (only ispfem resumes so far)";
+  }
+
  private:
   SphSolver solver_;
   LoadedParticles loaded_;

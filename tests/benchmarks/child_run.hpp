@@ -69,12 +69,14 @@ inline PngSize png_size(const std::filesystem::path& path) {
   return {word(16), word(20)};
 }
 
-/// `duet run` on the sand collapse through SPH with `arguments` after the scene, stdout and stderr
-/// to /dev/null; `in_child` runs in the child before exec (resource limits, signal dispositions).
-inline pid_t start_collapse_run(const std::vector<std::string>& arguments,
-                                const std::function<void()>& in_child = {}) {
-  const std::string scene = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
-  std::vector<std::string> words = {DUET_BINARY, "run", scene, "--method", "sph"};
+/// `duet run` on benchmarks/scenes/<scene>.toml through `method` with `arguments` after it, stdout
+/// and stderr to /dev/null; `in_child` runs in the child before exec (resource limits, signal
+/// dispositions).
+inline pid_t start_run(const std::string& scene, const std::string& method,
+                       const std::vector<std::string>& arguments,
+                       const std::function<void()>& in_child = {}) {
+  const std::string file = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/" + scene + ".toml";
+  std::vector<std::string> words = {DUET_BINARY, "run", file, "--method", method};
   words.insert(words.end(), arguments.begin(), arguments.end());
   const pid_t child = fork();
   if (child == 0) {
@@ -89,6 +91,12 @@ inline pid_t start_collapse_run(const std::vector<std::string>& arguments,
     _exit(127);
   }
   return child;
+}
+
+/// start_run on the sand collapse through SPH.
+inline pid_t start_collapse_run(const std::vector<std::string>& arguments,
+                                const std::function<void()>& in_child = {}) {
+  return start_run("collapse", "sph", arguments, in_child);
 }
 
 /// Waits (at most a minute) until the run in `out` has written its first frame: its signal

@@ -4,6 +4,8 @@
 
 #include "common/h5_writer.hpp"
 
+#include "common/state_bag.hpp"
+
 #include <hdf5.h>
 
 #include <gtest/gtest.h>
@@ -340,6 +342,75 @@ TEST(RunWriter, AnEarlierRunsFrameFilesInTheFolderAreRemoved) {
     EXPECT_EQ(entry.path().filename(), "000000.h5");
   }
   EXPECT_EQ(files, 1u);
+}
+
+TEST(RunWriter, StateAndParticlesOfAFrameReadBackExactly) {
+  // Arrange
+  const fs::path dir = test_directory();
+  const Particles written = make_particles(4, 0.123456789);
+  StateBag state;
+  put(state, "driver.time", 0.1 + 0.2);
+  put(state, "solver.previous_u", written.velocity);
+  put_bits(state, "solver.contact", std::vector<std::uint64_t>{0, 1, ~std::uint64_t{0}});
+  put_lists(state, "solver.residual_history", {{1.0, 1e-3, 1e-9}, {}, {0.5}});
+  // Act
+  {
+    RunWriter writer(dir.string());
+    writer.write_frame(0.0, written, {}, &state);
+  }
+  const StateBag read = read_state((dir / "run.h5").string(), 0);
+  Particles particles = make_particles(4, 9.0);  // other values, same shapes
+  read_particle_state((dir / "run.h5").string(), 0, particles);
+  // Assert: every entry and every particle array to the last bit.
+  EXPECT_EQ(read, state);
+  std::vector<std::uint64_t> bits;
+  get_bits(read, "solver.contact", bits);
+  EXPECT_EQ(bits.back(), ~std::uint64_t{0});
+  std::vector<std::vector<double>> lists;
+  get_lists(read, "solver.residual_history", lists);
+  EXPECT_EQ(lists, (std::vector<std::vector<double>>{{1.0, 1e-3, 1e-9}, {}, {0.5}}));
+  EXPECT_EQ(particles.position, written.position);
+  EXPECT_EQ(particles.velocity, written.velocity);
+  EXPECT_EQ(particles.displacement, written.displacement);
+  EXPECT_EQ(particles.stress, written.stress);
+  EXPECT_EQ(particles.strain, written.strain);
+  EXPECT_EQ(particles.mass, written.mass);
+  EXPECT_EQ(particles.volume, written.volume);
+  EXPECT_EQ(particles.density, written.density);
+  EXPECT_EQ(particles.body, written.body);
+  EXPECT_EQ(particles.material, written.material);
+  // A frame without state reads as an empty bag; a particle count that differs is refused.
+  {
+    RunWriter writer((dir / "plain").string());
+    writer.write_frame(0.0, written);
+  }
+  EXPECT_TRUE(read_state((dir / "plain" / "run.h5").string(), 0).empty());
+  Particles fewer = make_particles(3, 0.0);
+  EXPECT_THROW(read_particle_state((dir / "run.h5").string(), 0, fewer), std::runtime_error);
+}
+
+TEST(RunWriter, ContinuingAfterAFrameKeepsItAndTheFramesBefore) {
+  // Arrange: four frames.
+  const fs::path dir = test_directory();
+  {
+    RunWriter writer(dir.string());
+    for (const double t : {0.0, 0.1, 0.2, 0.3}) writer.write_frame(t, make_particles(2, t));
+  }
+  // Act: go on after frame 1 and write one more.
+  {
+    RunWriter writer(dir.string(), RunWriter::ContinueAfter{1});
+    EXPECT_EQ(writer.n_frames(), 2u);
+    writer.write_frame(0.15, make_particles(2, 7.0));
+  }
+  // Assert: frames 0, 1 as they were, 2 the new one, 3 gone from the index and the disk; the
+  // XDMF names what exists.
+  const std::string h5 = (dir / "run.h5").string();
+  ASSERT_EQ(count_frames(h5), 3u);
+  EXPECT_EQ(read_frame(h5, 1).time, 0.1);
+  EXPECT_EQ(read_frame(h5, 1).position[0].x(), make_particles(2, 0.1).position[0].x());
+  EXPECT_EQ(read_frame(h5, 2).time, 0.15);
+  EXPECT_FALSE(fs::exists(dir / "frames" / "000003.h5"));
+  EXPECT_EQ(check_xdmf_against_h5(dir), 3u * 16u);
 }
 
 TEST(RunWriter, FrameAtTheSameTimeReplacesThePreviousOne) {

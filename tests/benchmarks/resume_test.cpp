@@ -1,0 +1,164 @@
+// `duet run --resume DIR` (issue 17): a run killed at some moment and resumed from its last frame
+// ends exactly as the run that was never stopped (ispfem: bitwise, every measure, Newton's
+// residual history, the last frame's positions and stresses); what cannot be resumed is refused
+// with the reason, exit 2, before any work.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "common/h5_writer.hpp"
+#include "common/json.hpp"
+#include "tests/benchmarks/child_run.hpp"
+
+namespace duet {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The footing through ispfem at dp 0.25 m (100 increments, 81 frames, about 2 s on one thread),
+/// one thread so that the two runs sum in one order.
+const std::vector<std::string> kFooting = {"--spacing", "0.25", "--quiet", "--no-plots"};
+
+std::string quoted(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
+
+int wait_for(pid_t child) {
+  int status = 0;
+  waitpid(child, &status, 0);
+  return status;
+}
+
+/// Starts the footing into `out` and kills it (SIGKILL) once run.xdmf lists `frames` frames.
+void kill_after(const fs::path& out, std::size_t frames) {
+  fs::remove_all(out);
+  std::vector<std::string> args = kFooting;
+  args.insert(args.end(), {"--out", out.string()});
+  const pid_t child =
+      test::start_run("footing", "ispfem", args, [] { setenv("OMP_NUM_THREADS", "1", 1); });
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while ((!fs::exists(out / "run.xdmf") || test::frames_listed(out / "run.xdmf") < frames) &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  kill(child, SIGKILL);
+  wait_for(child);
+}
+
+class Resume : public testing::TestWithParam<std::size_t> {};
+
+TEST_P(Resume, AKilledIspfemRunGoesOnAsIfItHadNeverStopped) {
+  const std::size_t frames = GetParam();
+  const fs::path whole =
+      fs::temp_directory_path() / ("duet-resume-whole-" + std::to_string(frames));
+  const fs::path killed =
+      fs::temp_directory_path() / ("duet-resume-killed-" + std::to_string(frames));
+  fs::remove_all(whole);
+  const test::DuetResult a = test::run_command(
+      "OMP_NUM_THREADS=1 '" + std::string(DUET_BINARY) + "' run '" + DUET_SOURCE_DIR +
+      "/benchmarks/scenes/footing.toml' --method ispfem --spacing 0.25 --quiet --no-plots --out " +
+      quoted(whole));
+  ASSERT_EQ(a.status, 0) << a.output;
+
+  kill_after(killed, frames);
+  ASSERT_FALSE(fs::exists(killed / "metrics.json")) << "the run ended before the kill";
+  const test::DuetResult b =
+      test::run_command("OMP_NUM_THREADS=1 '" + std::string(DUET_BINARY) + "' run --resume " +
+                        quoted(killed) + " --quiet --no-plots");
+  ASSERT_EQ(b.status, 0) << b.output;
+
+  const Json ma = read_json((whole / "metrics.json").string());
+  const Json mb = read_json((killed / "metrics.json").string());
+  ASSERT_NE(mb.find("resumed"), nullptr);
+  const double from = mb.find("resumed")->find("from_frame")->number();
+  EXPECT_GE(from, static_cast<double>(frames) - 1.0);
+  EXPECT_EQ(mb.find("status")->string(), "completed");
+  EXPECT_EQ(ma.find("steps")->number(), mb.find("steps")->number());
+  // Every measure and Newton's whole history, to the last bit (dump writes doubles exactly).
+  EXPECT_EQ(ma.find("measures")->dump(), mb.find("measures")->dump());
+  const Json* newton_a = ma.find("diagnostics")->find("newton");
+  const Json* newton_b = mb.find("diagnostics")->find("newton");
+  EXPECT_EQ(newton_a->find("residual_history")->dump(), newton_b->find("residual_history")->dump());
+  EXPECT_EQ(newton_a->find("iterations")->number(), newton_b->find("iterations")->number());
+
+  const std::string ha = (whole / "run.h5").string();
+  const std::string hb = (killed / "run.h5").string();
+  ASSERT_EQ(count_frames(ha), count_frames(hb));
+  const std::size_t last = count_frames(ha) - 1;
+  const Frame fa = read_frame(ha, last);
+  const Frame fb = read_frame(hb, last);
+  EXPECT_EQ(fa.time, fb.time);
+  ASSERT_EQ(fa.position.size(), fb.position.size());
+  for (std::size_t i = 0; i < fa.position.size(); ++i) {
+    ASSERT_EQ(fa.position[i], fb.position[i]) << "particle " << i;
+    ASSERT_EQ(fa.stress[i], fb.stress[i]) << "particle " << i;
+  }
+  EXPECT_EQ(read_series(ha, "bearing"), read_series(hb, "bearing"));
+}
+
+// Early (in the elastic part), and late (under the plateau).
+INSTANTIATE_TEST_SUITE_P(KilledAfterFrames, Resume, testing::Values(std::size_t{8}, 50u));
+
+/// `duet run --resume DIR` and what it said.
+test::DuetResult resume(const fs::path& dir) {
+  return test::run_command("'" + std::string(DUET_BINARY) + "' run --resume " + quoted(dir) +
+                           " --quiet --no-plots");
+}
+
+TEST(ResumeRefusal, ACompletedRunHasNothingToGoOnWith) {
+  const fs::path out = fs::temp_directory_path() / "duet-resume-completed";
+  fs::remove_all(out);
+  const test::DuetResult run = test::run_duet(
+      std::string("run '") + DUET_SOURCE_DIR +
+      "/benchmarks/scenes/footing.toml' --method ispfem --spacing 0.25 --set time.end_time=0.2 "
+      "--quiet --no-plots --out " +
+      quoted(out));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const test::DuetResult r = resume(out);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("the run completed (t = 0.2 s); nothing to go on with"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(ResumeRefusal, AMethodWhoseFramesLackItsStateSaysWhy) {
+  // An sph run killed before it wrote metrics.json: its frames hold no state.
+  const fs::path out = fs::temp_directory_path() / "duet-resume-sph";
+  fs::remove_all(out);
+  const test::DuetResult run = test::run_duet(
+      std::string("run '") + DUET_SOURCE_DIR +
+      "/benchmarks/scenes/collapse.toml' --method sph --spacing 0.01 --set time.end_time=0.01 "
+      "--quiet --no-plots --out " +
+      quoted(out));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const Json metrics = read_json((out / "metrics.json").string());
+  EXPECT_FALSE(metrics.find("resumable")->boolean());
+  fs::remove(out / "metrics.json");
+  const test::DuetResult r = resume(out);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("sph keeps its Verlet neighbour lists"), std::string::npos) << r.output;
+}
+
+TEST(ResumeRefusal, AFolderWithoutARunOrWithASceneBeside) {
+  const fs::path empty = fs::temp_directory_path() / "duet-resume-empty";
+  fs::remove_all(empty);
+  fs::create_directories(empty);
+  const test::DuetResult r = resume(empty);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("no run.h5 there"), std::string::npos) << r.output;
+
+  const test::DuetResult both =
+      test::run_duet(std::string("run '") + DUET_SOURCE_DIR +
+                     "/benchmarks/scenes/footing.toml' --resume " + quoted(empty));
+  EXPECT_EQ(both.status, 2) << both.output;
+  EXPECT_NE(both.output.find("takes no scene"), std::string::npos) << both.output;
+}
+
+}  // namespace
+}  // namespace duet
