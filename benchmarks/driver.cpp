@@ -198,14 +198,19 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     return state;
   };
   // A frame (and the series with it): a full disk or a quota ends the run, the frames written
-  // before stay readable. A failure found before the write stays the run's reason.
-  const auto write_output = [&](bool with_series) {
+  // before stay readable. A failure found before the write stays the run's reason. The first
+  // frame and the frames at the output times hold the state (where the solver keeps one) and are
+  // restart points: a resumed run starts from one of them, the last state-holding frame (the
+  // frame written when a run stops is not one).
+  const auto write_output = [&](bool with_series, bool restart_point) {
     ScopedTimer t(output_timers, Phase::output);
     try {
       if (with_series) writer.set_series(measures.names(), measures.columns());
+      const bool with_state = keeps_state && restart_point;
       const std::optional<StateBag> state =
-          keeps_state ? std::optional<StateBag>(state_now()) : std::nullopt;
+          with_state ? std::optional<StateBag>(state_now()) : std::nullopt;
       writer.write_frame(time, particles, shown(time), state ? &*state : nullptr);
+      if (with_state) solver->restart_point();
     } catch (const std::exception& e) {
       output_failed = true;
       if (!failure) failure = Failure{std::string("writing the output failed: ") + e.what(), time};
@@ -236,13 +241,14 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       measures.restore_state(state);
       budget.restore_state(state);
       solver->restore_state(state, particles);
+      solver->restart_point();
     } catch (const std::runtime_error& e) {
       throw InputError("--resume " + options.out_dir + ": frame " + std::to_string(resume->frame) +
                        ": " + e.what());
     }
     previous_position = particles.position;
   } else {
-    write_output(false);
+    write_output(false, true);
     measures.sample(time, particles, solver->reactions());
     energy.record(time, kinetic_energy(particles));
   }
@@ -286,7 +292,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     }
     if (time >= next_output) {
       next_output += output_interval;  // before the write: the frame's state holds the next one
-      write_output(true);
+      write_output(true, true);
       if (output_failed) break;
     }
     if (progress) progress->update(time, steps);
@@ -294,7 +300,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   }
   // The last state (or the state at failure) is always a frame, unless writing is what failed.
   if (!failure) measures.sample(time, particles, solver->reactions());
-  if (!output_failed) write_output(true);
+  if (!output_failed) write_output(true, false);
   const std::string status = failure ? "failed" : interrupted_by ? "interrupted" : "completed";
   if (interrupted_by) {
     failure = Failure{"interrupted by signal " + std::to_string(interrupted_by), time};

@@ -81,6 +81,10 @@ class Solver {
   /// frame holds them: the run then goes on as if it had never stopped. Throws std::runtime_error
   /// when an entry is missing or does not fit.
   virtual void restore_state(const StateBag& /*state*/, const Particles& /*particles*/) {}
+  /// Called after each frame that holds the state, and after restore_state: from here both the
+  /// run that goes on and a run resumed from that frame must take the same steps (the explicit
+  /// solver builds its next mesh anew, as a resumed run must).
+  virtual void restart_point() {}
 };
 
 struct MethodInfo {

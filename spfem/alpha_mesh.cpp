@@ -216,9 +216,9 @@ void label_from_faces(const Delaunay& delaunay, std::size_t n_nodes, AlphaMesh& 
 
 }  // namespace
 
-void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh) {
+void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh, bool fresh) {
   Scratch& s = scratch;
-  if (!move_and_flip(points, alpha, s)) rebuild(points, alpha, s);
+  if (fresh || !move_and_flip(points, alpha, s)) rebuild(points, alpha, s);
   Delaunay& delaunay = s.delaunay;
 
   mesh.triangles.clear();

@@ -29,8 +29,11 @@ struct AlphaMesh {
 };
 
 /// Triangulates `points` and keeps the faces whose circumradius is below `alpha` (m); fills
-/// surface nodes and connected components. Reuses the storage of `mesh`.
-void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh);
+/// surface nodes and connected components. Reuses the storage of `mesh`. The triangulation of the
+/// last call is moved and flipped when it can be (the same triangles, listed in an order that
+/// depends on the triangulation's history); `fresh` builds it anew (an order of the points alone).
+void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh,
+                      bool fresh = false);
 
 /// The triangles in one order that depends on the triangulation alone, not on its history: each
 /// rotated to start at its smallest node (orientation kept), the list sorted, then labelled

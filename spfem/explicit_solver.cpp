@@ -505,3 +505,36 @@ Json ExplicitSolver::diagnostics() const {
 }
 
 }  // namespace duet::spfem
+
+namespace duet::spfem {
+
+void ExplicitSolver::save_state(StateBag& state) const {
+  const EspfemCounters& c = counters_;
+  put(state, "solver.counters",
+      std::vector<double>{double(c.steps), c.dt_min, c.dt_max, double(c.contacts_max),
+                          c.energy_reference, c.energy_drift_max, double(c.stress_limited_steps),
+                          energy_reference_set_ ? 1.0 : 0.0});
+  put(state, "solver.boundary_force", boundary_force_);
+  discretisation_.save_state(state, "solver.mesh_counters");
+}
+
+void ExplicitSolver::restore_state(const StateBag& state) {
+  const std::vector<double>& k = entry(state, "solver.counters");
+  if (k.size() != 8) throw std::runtime_error("the saved state's solver.counters has another size");
+  if (entry(state, "solver.boundary_force").size() != 2 * boundary_force_.size()) {
+    throw std::runtime_error("the saved state's solver.boundary_force is not this scene's");
+  }
+  EspfemCounters& c = counters_;
+  c.steps = static_cast<long>(k[0]);
+  c.dt_min = k[1];
+  c.dt_max = k[2];
+  c.contacts_max = static_cast<long>(k[3]);
+  c.energy_reference = k[4];
+  c.energy_drift_max = k[5];
+  c.stress_limited_steps = static_cast<long>(k[6]);
+  energy_reference_set_ = k[7] != 0.0;
+  get(state, "solver.boundary_force", boundary_force_);
+  discretisation_.restore_state(state, "solver.mesh_counters");
+}
+
+}  // namespace duet::spfem

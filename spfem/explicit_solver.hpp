@@ -80,6 +80,14 @@ class ExplicitSolver {
   /// Counters and timings for metrics.json.
   Json diagnostics() const;
 
+  /// `duet run --resume` (common/solver.hpp): the counters, the energy reference, the reactions
+  /// and the walls' attachments, keys "solver.*"; a frame is a restart point (the next mesh is
+  /// built anew). Refused where the mesh is kept between steps.
+  std::string resume_refusal() const { return discretisation_.resume_refusal(); }
+  void save_state(StateBag& state) const;
+  void restore_state(const StateBag& state);
+  void restart_point() { discretisation_.build_next_mesh_fresh(); }
+
  private:
   double time_step(const Particles& particles);
   double cell_size_time_step(const Particles& particles) const;

@@ -125,10 +125,12 @@ class EspfemMethod final : public Solver {
 
   Json diagnostics() const override { return solver_.diagnostics(); }
 
-  std::string resume_refusal() const override {
-    return "espfem moves and flips its triangulation from step to step, and the frames do not "
-           "hold the triangulation a step continues from (only ispfem resumes so far)";
+  std::string resume_refusal() const override { return solver_.resume_refusal(); }
+  void save_state(StateBag& state) const override { solver_.save_state(state); }
+  void restore_state(const StateBag& state, const Particles& /*particles*/) override {
+    solver_.restore_state(state);
   }
+  void restart_point() override { solver_.restart_point(); }
 
   const std::vector<MeshTriangle>* mesh_triangles(const Particles& particles) override {
     return mesh_in_use(solver_.discretisation(), particles, preview_);

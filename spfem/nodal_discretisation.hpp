@@ -60,6 +60,9 @@ class NodalDiscretisation {
   /// Lists each new mesh's triangles in an order of the triangulation alone (order_canonically):
   /// the implicit solver's increments then repeat exactly after `duet run --resume`.
   void order_meshes_canonically(bool canonical) { canonical_order_ = canonical; }
+  /// The next mesh is built anew rather than moved and flipped from the last (a restart point:
+  /// the explicit solver's frames, from which a resumed run starts with no triangulation).
+  void build_next_mesh_fresh() { fresh_next_ = true; }
 
   /// True when row k carries boundary-layer or wall-strip terms (a surface node, layer on).
   bool has_layer_terms(std::size_t k) const {
@@ -102,6 +105,7 @@ class NodalDiscretisation {
   WallStrips wall_strips_;        // no-slip (and free-slip) walls as strips of the smoothing
   bool have_mesh_ = false;
   bool canonical_order_ = false;
+  bool fresh_next_ = false;
   MeshCounters counters_;
 };
 
