@@ -27,6 +27,10 @@ const std::vector<double>& entry(const StateBag& bag, const std::string& key) {
   return it->second;
 }
 
+void throw_bad_entry(const std::string& key, const std::string& what) {
+  throw std::runtime_error("the saved state's '" + key + "' " + what);
+}
+
 double scalar(const StateBag& bag, const std::string& key) {
   const std::vector<double>& v = entry(bag, key);
   if (v.size() != 1) throw std::runtime_error("the saved state's '" + key + "' is not one number");

@@ -23,9 +23,21 @@ void put_integers(StateBag& bag, const std::string& key, const std::vector<Integ
   bag[key].assign(values.begin(), values.end());
 }
 
+/// Fixed-size Eigen matrices (Mat2, Mat3), each flattened in Eigen's storage order.
+template <typename Matrix>
+void put_matrices(StateBag& bag, const std::string& key, const std::vector<Matrix>& values) {
+  constexpr int size = Matrix::SizeAtCompileTime;
+  std::vector<double>& v = bag[key];
+  v.resize(size * values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    for (int k = 0; k < size; ++k) v[size * i + k] = values[i](k);
+  }
+}
+
 /// The entry `key`; throws std::runtime_error naming it when the bag lacks it (a frame written by
 /// another version, or by a method that keeps other state).
 const std::vector<double>& entry(const StateBag& bag, const std::string& key);
+[[noreturn]] void throw_bad_entry(const std::string& key, const std::string& what);
 double scalar(const StateBag& bag, const std::string& key);
 void get(const StateBag& bag, const std::string& key, std::vector<double>& out);
 void get(const StateBag& bag, const std::string& key, std::vector<Vec2>& out);
@@ -39,6 +51,17 @@ void get_integers(const StateBag& bag, const std::string& key, std::vector<Integ
 /// 64-bit masks (contact and attachment bits), each as two exact 32-bit halves (low, high).
 void put_bits(StateBag& bag, const std::string& key, const std::vector<std::uint64_t>& masks);
 void get_bits(const StateBag& bag, const std::string& key, std::vector<std::uint64_t>& masks);
+
+template <typename Matrix>
+void get_matrices(const StateBag& bag, const std::string& key, std::vector<Matrix>& out) {
+  constexpr int size = Matrix::SizeAtCompileTime;
+  const std::vector<double>& v = entry(bag, key);
+  if (v.size() % size != 0) throw_bad_entry(key, "is not a list of matrices");
+  out.resize(v.size() / size);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    for (int k = 0; k < size; ++k) out[i](k) = v[size * i + k];
+  }
+}
 
 /// Lists of lists (Newton's residual history): lengths, then the values.
 void put_lists(StateBag& bag, const std::string& key,

@@ -124,10 +124,12 @@ class SphMethod final : public Solver {
     return j;
   }
 
-  std::string resume_refusal() const override {
-    return "sph keeps its Verlet neighbour lists, their working order and the integrator's last "
-           "step from step to step, and the frames do not hold them (only ispfem resumes so far)";
+  std::string resume_refusal() const override { return ""; }
+  void save_state(StateBag& state) const override { solver_.save_state(state); }
+  void restore_state(const StateBag& state, const Particles& /*particles*/) override {
+    solver_.restore_state(state);
   }
+  void restart_point() override { solver_.restart_point(); }
 
  private:
   SphSolver solver_;

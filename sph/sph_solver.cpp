@@ -575,3 +575,102 @@ void SphSolver::settle(Particles& particles, double duration, double damping) {
 }
 
 }  // namespace duet::sph
+
+namespace duet::sph {
+
+void SphSolver::save_state(StateBag& state) const {
+  for (std::size_t w = 0; w < geometry_.size(); ++w) {
+    const std::string key = "solver.geometry." + std::to_string(w);
+    put(state, key + ".points", geometry_[w].points);
+    put(state, key + ".normals", geometry_[w].normals);
+    put(state, key + ".point_velocity", geometry_[w].point_velocity);
+  }
+  put(state, "solver.dummy_position", dummy_position_);
+  put(state, "solver.dummy_velocity", dummy_velocity_);
+  put(state, "solver.acceleration", acceleration_);
+  put_matrices(state, "solver.velocity_gradient", velocity_gradient_);
+  put(state, "solver.density_rate", density_rate_);
+  put(state, "solver.wall_force", wall_force_);
+  put(state, "solver.velocity_old", velocity_old_);
+  put_matrices(state, "solver.stress_old", stress_old_);
+  put_matrices(state, "solver.strain_old", strain_old_);
+  put(state, "solver.density_old", density_old_);
+  put(state, "solver.void_ratio_old", void_ratio_old_);
+  const SphCounters& c = counters_;
+  put(state, "solver.scalars",
+      std::vector<double>{first_step_ ? 1.0 : 0.0, previous_dt_, double(penetrations_),
+                          double(c.steps), double(c.penetrations_last_step),
+                          double(c.penetrations_max), double(c.penetrations_total),
+                          double(c.ghost_particles_max), double(c.neighbours_max),
+                          double(c.neighbour_builds), c.dt_min, c.dt_max});
+  const RigidContact& k = contact_;
+  for (std::size_t b = 0; b < k.step_shift.size(); ++b) {
+    put(state, "solver.contact.step_shift." + std::to_string(b), k.step_shift[b]);
+  }
+  put(state, "solver.contact.box_min", k.box_min);
+  put(state, "solver.contact.box_max", k.box_max);
+  put(state, "solver.contact.previous_position", k.previous_position);
+  put(state, "solver.contact.tangential", k.tangential);
+  put_integers(state, "solver.contact.body_of", k.body_of);
+  put(state, "solver.contact.reaction", k.reaction);
+  put(state, "solver.contact.contacts", static_cast<double>(k.contacts));
+}
+
+void SphSolver::restore_state(const StateBag& state) {
+  // Each array as long as the one initialise sized: the same scene, the same particles.
+  const auto same_size = [](const std::string& key, std::size_t had, std::size_t read) {
+    if (had != read) throw_bad_entry(key, "is not of this scene's size");
+  };
+  const auto vectors = [&](const std::string& key, std::vector<Vec2>& out) {
+    const std::size_t had = out.size();
+    get(state, key, out);
+    same_size(key, had, out.size());
+  };
+  for (std::size_t w = 0; w < geometry_.size(); ++w) {
+    const std::string key = "solver.geometry." + std::to_string(w);
+    vectors(key + ".points", geometry_[w].points);
+    vectors(key + ".normals", geometry_[w].normals);
+    vectors(key + ".point_velocity", geometry_[w].point_velocity);
+  }
+  vectors("solver.dummy_position", dummy_position_);
+  vectors("solver.dummy_velocity", dummy_velocity_);
+  vectors("solver.acceleration", acceleration_);
+  get_matrices(state, "solver.velocity_gradient", velocity_gradient_);
+  get(state, "solver.density_rate", density_rate_);
+  vectors("solver.wall_force", wall_force_);
+  vectors("solver.velocity_old", velocity_old_);
+  get_matrices(state, "solver.stress_old", stress_old_);
+  get_matrices(state, "solver.strain_old", strain_old_);
+  get(state, "solver.density_old", density_old_);
+  get(state, "solver.void_ratio_old", void_ratio_old_);
+  const std::vector<double>& v = entry(state, "solver.scalars");
+  if (v.size() != 12) throw_bad_entry("solver.scalars", "has another size");
+  first_step_ = v[0] != 0.0;
+  previous_dt_ = v[1];
+  penetrations_ = static_cast<long>(v[2]);
+  SphCounters& c = counters_;
+  c.steps = static_cast<long>(v[3]);
+  c.penetrations_last_step = static_cast<long>(v[4]);
+  c.penetrations_max = static_cast<long>(v[5]);
+  c.penetrations_total = static_cast<long>(v[6]);
+  c.ghost_particles_max = static_cast<std::size_t>(v[7]);
+  c.neighbours_max = static_cast<std::size_t>(v[8]);
+  c.neighbour_builds = static_cast<long>(v[9]);
+  c.dt_min = v[10];
+  c.dt_max = v[11];
+  RigidContact& k = contact_;
+  for (std::size_t b = 0; b < k.step_shift.size(); ++b) {
+    vectors("solver.contact.step_shift." + std::to_string(b), k.step_shift[b]);
+  }
+  vectors("solver.contact.box_min", k.box_min);
+  vectors("solver.contact.box_max", k.box_max);
+  vectors("solver.contact.previous_position", k.previous_position);
+  vectors("solver.contact.tangential", k.tangential);
+  const std::size_t bodies_of = k.body_of.size();
+  get_integers(state, "solver.contact.body_of", k.body_of);
+  same_size("solver.contact.body_of", bodies_of, k.body_of.size());
+  vectors("solver.contact.reaction", k.reaction);
+  k.contacts = static_cast<long>(scalar(state, "solver.contact.contacts"));
+}
+
+}  // namespace duet::sph

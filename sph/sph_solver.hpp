@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/particles.hpp"
+#include "common/state_bag.hpp"
 #include "common/tensor.hpp"
 #include "common/timers.hpp"
 #include "constitutive/model.hpp"
@@ -88,6 +89,14 @@ class SphSolver {
   const std::vector<Vec2>& boundary_positions() const { return boundary_position_; }
   /// Acceleration of each soil particle in the last step (m/s^2).
   const std::vector<Vec2>& accelerations() const { return acceleration_; }
+
+  /// `duet run --resume` (common/solver.hpp): the walls and dummies where they are, the rigid
+  /// bodies' contact state, the integrator's last step (Verlet's n - 1 state), the counters, keys
+  /// "solver.*". A frame is a restart point: the next step builds its neighbour lists anew (in
+  /// an order of the positions alone), as a resumed run must.
+  void save_state(StateBag& state) const;
+  void restore_state(const StateBag& state);
+  void restart_point() { rebuild_ = true; }
 
  private:
   /// What the pair loop reads of particle j, in working order (soil sorted by cell, then ghost

@@ -222,9 +222,10 @@ def plot_snapshots(run, field):
         return
     picks = sorted({0, len(run.frames) // 2, len(run.frames) - 1})
     groups = [run.h5["frames"][run.frames[k]] for k in picks]
-    if field not in groups[0]:
+    if field not in groups[0] or not isinstance(groups[0][field], h5py.Dataset):
         n = groups[0]["position"].shape[0]
-        available = [k for k in groups[0] if groups[0][k].shape == (n,) and k != "vertices"]
+        available = [k for k, v in groups[0].items()
+                     if isinstance(v, h5py.Dataset) and v.shape == (n,) and k != "vertices"]
         raise SystemExit(f"run.py: no field '{field}' in the frames; one of {', '.join(available)}")
     values = [g[field][()] for g in groups]
     finite = np.concatenate([v[np.isfinite(v)] for v in values]) if values else np.array([])

@@ -22,17 +22,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The footing at dp 0.25 m (81 frames; ispfem 100 increments, espfem 6,773 steps, 2-3 s each on
-/// one thread), one thread so that the two runs sum in one order.
-const std::vector<std::string> kFooting = {"--spacing", "0.25", "--quiet", "--no-plots"};
-
+/// A benchmark scene through a method at a coarse spacing (a few seconds on one thread: one
+/// thread so that the two runs sum in one order), killed once run.xdmf lists `frames` frames.
 struct ResumeCase {
+  std::string scene;
   std::string method;
-  std::size_t frames;  // killed once run.xdmf lists this many
+  std::string spacing;
+  std::size_t frames;
 };
 
 std::ostream& operator<<(std::ostream& out, const ResumeCase& c) {
-  return out << c.method << " killed after " << c.frames << " frames";
+  return out << c.scene << " through " << c.method << " at dp " << c.spacing << ", killed after "
+             << c.frames << " frames";
 }
 
 std::string quoted(const fs::path& p) {
@@ -45,13 +46,14 @@ int wait_for(pid_t child) {
   return status;
 }
 
-/// Starts the footing into `out` and kills it (SIGKILL) once run.xdmf lists `frames` frames.
-void kill_after(const fs::path& out, const std::string& method, std::size_t frames) {
+/// Starts the case into `out` and kills it (SIGKILL) once run.xdmf lists its `frames` frames.
+void kill_after(const fs::path& out, const ResumeCase& c) {
   fs::remove_all(out);
-  std::vector<std::string> args = kFooting;
-  args.insert(args.end(), {"--out", out.string()});
+  const std::vector<std::string> args = {"--spacing",  c.spacing, "--quiet",
+                                         "--no-plots", "--out",   out.string()};
   const pid_t child =
-      test::start_run("footing", method, args, [] { setenv("OMP_NUM_THREADS", "1", 1); });
+      test::start_run(c.scene, c.method, args, [] { setenv("OMP_NUM_THREADS", "1", 1); });
+  const std::size_t frames = c.frames;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while ((!fs::exists(out / "run.xdmf") || test::frames_listed(out / "run.xdmf") < frames) &&
          std::chrono::steady_clock::now() < deadline) {
@@ -65,17 +67,17 @@ class Resume : public testing::TestWithParam<ResumeCase> {};
 
 TEST_P(Resume, AKilledRunGoesOnAsIfItHadNeverStopped) {
   const ResumeCase& c = GetParam();
-  const std::string tag = c.method + "-" + std::to_string(c.frames);
+  const std::string tag = c.scene + "-" + c.method + "-" + std::to_string(c.frames);
   const fs::path whole = fs::temp_directory_path() / ("duet-resume-whole-" + tag);
   const fs::path killed = fs::temp_directory_path() / ("duet-resume-killed-" + tag);
   fs::remove_all(whole);
-  const test::DuetResult a =
-      test::run_command("OMP_NUM_THREADS=1 '" + std::string(DUET_BINARY) + "' run '" +
-                        DUET_SOURCE_DIR + "/benchmarks/scenes/footing.toml' --method " + c.method +
-                        " --spacing 0.25 --quiet --no-plots --out " + quoted(whole));
+  const test::DuetResult a = test::run_command(
+      "OMP_NUM_THREADS=1 '" + std::string(DUET_BINARY) + "' run '" + DUET_SOURCE_DIR +
+      "/benchmarks/scenes/" + c.scene + ".toml' --method " + c.method + " --spacing " + c.spacing +
+      " --quiet --no-plots --out " + quoted(whole));
   ASSERT_EQ(a.status, 0) << a.output;
 
-  kill_after(killed, c.method, c.frames);
+  kill_after(killed, c);
   ASSERT_FALSE(fs::exists(killed / "metrics.json")) << "the run ended before the kill";
   const test::DuetResult b =
       test::run_command("OMP_NUM_THREADS=1 '" + std::string(DUET_BINARY) + "' run --resume " +
@@ -113,13 +115,21 @@ TEST_P(Resume, AKilledRunGoesOnAsIfItHadNeverStopped) {
     ASSERT_EQ(fa.position[i], fb.position[i]) << "particle " << i;
     ASSERT_EQ(fa.stress[i], fb.stress[i]) << "particle " << i;
   }
-  EXPECT_EQ(read_series(ha, "bearing"), read_series(hb, "bearing"));
+  for (const auto& [name, value] : ma.find("measures")->members()) {
+    EXPECT_EQ(read_series(ha, name), read_series(hb, name)) << name;
+  }
 }
 
-// Early (in the elastic part), and late (under the plateau).
+// The footing (a rough rigid footing pushed into Tresca clay, 81 frames) early in the elastic part
+// and late under the plateau, through the SPFEM methods; the sand collapse (hypoplastic, no-slip
+// floor, 101 frames, Verlet) through sph.
 INSTANTIATE_TEST_SUITE_P(KilledAfterFrames, Resume,
-                         testing::Values(ResumeCase{"ispfem", 8}, ResumeCase{"ispfem", 50},
-                                         ResumeCase{"espfem", 8}, ResumeCase{"espfem", 50}));
+                         testing::Values(ResumeCase{"footing", "ispfem", "0.25", 8},
+                                         ResumeCase{"footing", "ispfem", "0.25", 50},
+                                         ResumeCase{"footing", "espfem", "0.25", 8},
+                                         ResumeCase{"footing", "espfem", "0.25", 50},
+                                         ResumeCase{"collapse", "sph", "0.01", 12},
+                                         ResumeCase{"collapse", "sph", "0.01", 60}));
 
 /// `duet run --resume DIR` and what it said.
 test::DuetResult resume(const fs::path& dir) {
@@ -143,22 +153,25 @@ TEST(ResumeRefusal, ACompletedRunHasNothingToGoOnWith) {
       << r.output;
 }
 
-TEST(ResumeRefusal, AMethodWhoseFramesLackItsStateSaysWhy) {
-  // An sph run killed before it wrote metrics.json: its frames hold no state.
-  const fs::path out = fs::temp_directory_path() / "duet-resume-sph";
+TEST(ResumeRefusal, AMeshKeptFromStepToStepSaysWhy) {
+  // espfem with spfem.remesh = angle, killed before it wrote metrics.json: its frames hold no
+  // state, for the mesh it keeps is not in them.
+  const fs::path out = fs::temp_directory_path() / "duet-resume-angle";
   fs::remove_all(out);
   const test::DuetResult run = test::run_duet(
       std::string("run '") + DUET_SOURCE_DIR +
-      "/benchmarks/scenes/collapse.toml' --method sph --spacing 0.01 --set time.end_time=0.01 "
+      "/benchmarks/scenes/bar.toml' --method espfem --spacing 0.02 --set time.end_time=0.002 "
       "--quiet --no-plots --out " +
       quoted(out));
   ASSERT_EQ(run.status, 0) << run.output;
   const Json metrics = read_json((out / "metrics.json").string());
   EXPECT_FALSE(metrics.find("resumable")->boolean());
+  EXPECT_TRUE(read_state((out / "run.h5").string(), 0).empty());
   fs::remove(out / "metrics.json");
   const test::DuetResult r = resume(out);
   EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("sph keeps its Verlet neighbour lists"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("spfem.remesh = angle keeps a mesh from step to step"), std::string::npos)
+      << r.output;
 }
 
 TEST(ResumeRefusal, AFolderWithoutARunOrWithASceneBeside) {
