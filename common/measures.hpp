@@ -46,7 +46,8 @@ class MeasureRecorder {
   double final_value(const std::string& name) const;
 
   /// {"<measure>": {"value", "reference", "rel_error", "source", "tolerance", "passed"}} for every
-  /// reference of the scene.
+  /// reference of the scene but a factor of safety's (found by `duet srf` over many runs: one
+  /// run's safety_factor is the factor it was given).
   Json accuracy() const;
 
   /// The samples so far into / from a frame's state (`duet run --resume`), keys "measures.*".

@@ -77,5 +77,39 @@ TEST(MeasureRecorder, MaxTakesTheLargestMagnitudeAndTimeInterpolates) {
   EXPECT_NEAR(recorder.final_value("half"), 1.0, 1e-12);
 }
 
+TEST(MeasureRecorder, AFactorOfSafetyIsNotScoredByOneRunAndTheOtherReferencesAre) {
+  // A slope run at strength reduction factor 1.2: its safety_factor measure is that factor, which
+  // says nothing against the slope's factor of safety (found by duet srf); its displacement is
+  // scored as usual.
+  Scene scene;
+  scene.spacing = 0.5;
+  scene.strength_reduction.factor = 1.2;
+  Body body;
+  body.name = "slope";
+  scene.bodies.push_back(body);
+  Measure factor;
+  factor.name = "safety_factor";
+  factor.kind = MeasureKind::safety_factor;
+  Measure moved;
+  moved.name = "moved";
+  moved.kind = MeasureKind::max_displacement;
+  moved.target = "slope";
+  moved.component = "x";
+  scene.measures = {factor, moved};
+  scene.references = {{"safety_factor", 1.4, "Griffiths & Lane 1999", 0.1},
+                      {"moved", 0.5, "a closed form", 0.1}};
+  MeasureRecorder recorder(scene);
+  Particles p = column_of_particles({{0.0, 0.0}});
+  p.displacement[0] = Vec2(0.4, 0.0);
+  recorder.sample(0.0, p, {});
+  // Act
+  const Json accuracy = recorder.accuracy();
+  // Assert
+  EXPECT_EQ(accuracy.find("safety_factor"), nullptr);
+  EXPECT_NEAR(recorder.final_value("safety_factor"), 1.2, 1e-15);  // still recorded
+  ASSERT_NE(accuracy.find("moved"), nullptr);
+  EXPECT_NEAR(accuracy.find("moved")->find("rel_error")->number(), 0.2, 1e-12);
+}
+
 }  // namespace
 }  // namespace duet
