@@ -518,7 +518,7 @@ void ExplicitSolver::save_state(StateBag& state) const {
   discretisation_.save_state(state, "solver.mesh_counters");
 }
 
-void ExplicitSolver::restore_state(const StateBag& state) {
+void ExplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
   const std::vector<double>& k = entry(state, "solver.counters");
   if (k.size() != 8) throw std::runtime_error("the saved state's solver.counters has another size");
   if (entry(state, "solver.boundary_force").size() != 2 * boundary_force_.size()) {
@@ -534,7 +534,7 @@ void ExplicitSolver::restore_state(const StateBag& state) {
   c.stress_limited_steps = static_cast<long>(k[6]);
   energy_reference_set_ = k[7] != 0.0;
   get(state, "solver.boundary_force", boundary_force_);
-  discretisation_.restore_state(state, "solver.mesh_counters");
+  discretisation_.restore_state(state, "solver.mesh_counters", nodes);
 }
 
 }  // namespace duet::spfem

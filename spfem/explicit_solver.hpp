@@ -81,12 +81,11 @@ class ExplicitSolver {
   Json diagnostics() const;
 
   /// `duet run --resume` (common/solver.hpp): the counters, the energy reference, the reactions
-  /// and the walls' attachments, keys "solver.*"; a frame is a restart point (the next mesh is
-  /// built anew). Refused where the mesh is kept between steps.
-  std::string resume_refusal() const { return discretisation_.resume_refusal(); }
+  /// and the walls' attachments (and a kept mesh), keys "solver.*"; a frame is a restart point
+  /// (NodalDiscretisation::restart_point).
   void save_state(StateBag& state) const;
-  void restore_state(const StateBag& state);
-  void restart_point() { discretisation_.build_next_mesh_fresh(); }
+  void restore_state(const StateBag& state, std::size_t nodes);
+  void restart_point() { discretisation_.restart_point(); }
 
  private:
   double time_step(const Particles& particles);

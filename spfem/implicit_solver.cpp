@@ -635,7 +635,7 @@ void ImplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
   c.increment_max = k[10];
   c.constrained_nodes_max = static_cast<long>(k[11]);
   get_lists(state, "solver.residual_history", c.residual_history);
-  discretisation_.restore_state(state, "solver.mesh_counters");
+  discretisation_.restore_state(state, "solver.mesh_counters", nodes);
 }
 
 }  // namespace duet::spfem

@@ -83,11 +83,12 @@ class ImplicitSolver {
   Json diagnostics() const;
 
   /// `duet run --resume` (common/solver.hpp): what an increment carries to the next (its size,
-  /// the contacts held and let go, the predictor's and Newmark's vectors, the counters), keys
-  /// "solver.*". Refused where the mesh is kept between increments.
-  std::string resume_refusal() const { return discretisation_.resume_refusal(); }
+  /// the contacts held and let go, the predictor's and Newmark's vectors, the counters, the walls'
+  /// attachments and a kept mesh), keys "solver.*"; a frame is a restart point
+  /// (NodalDiscretisation::restart_point).
   void save_state(StateBag& state) const;
   void restore_state(const StateBag& state, std::size_t nodes);
+  void restart_point() { discretisation_.restart_point(); }
 
  private:
   struct Attempt {

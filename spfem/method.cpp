@@ -125,10 +125,10 @@ class EspfemMethod final : public Solver {
 
   Json diagnostics() const override { return solver_.diagnostics(); }
 
-  std::string resume_refusal() const override { return solver_.resume_refusal(); }
+  std::string resume_refusal() const override { return ""; }
   void save_state(StateBag& state) const override { solver_.save_state(state); }
-  void restore_state(const StateBag& state, const Particles& /*particles*/) override {
-    solver_.restore_state(state);
+  void restore_state(const StateBag& state, const Particles& particles) override {
+    solver_.restore_state(state, particles.size());
   }
   void restart_point() override { solver_.restart_point(); }
 
@@ -173,11 +173,12 @@ class IspfemMethod final : public Solver {
 
   bool inertial() const override { return newmark_; }
 
-  std::string resume_refusal() const override { return solver_.resume_refusal(); }
+  std::string resume_refusal() const override { return ""; }
   void save_state(StateBag& state) const override { solver_.save_state(state); }
   void restore_state(const StateBag& state, const Particles& particles) override {
     solver_.restore_state(state, particles.size());
   }
+  void restart_point() override { solver_.restart_point(); }
 
   const std::vector<MeshTriangle>* mesh_triangles(const Particles& particles) override {
     return mesh_in_use(solver_.discretisation(), particles, preview_);

@@ -59,6 +59,11 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
         counters_.isolated_nodes_max,
         static_cast<std::size_t>(std::count(mesh_.component.begin(), mesh_.component.end(), -1)));
   }
+  // A restart point keeping its mesh: the labels from the triangles alone and the cells built
+  // anew, as a run resumed from it does (spfem.remesh = angle).
+  const bool from_scratch = remesh || cells_from_scratch_;
+  if (!remesh && cells_from_scratch_) label_mesh(x.size(), mesh_);
+  cells_from_scratch_ = false;
   // papers/004 smoothing slides: A_k = sum_j A_e^j / 3, b_lh(x_k) = (1/A_k) sum_j A_e^j N_l,h^j
   // / 3. The particles are cell-centred (the particle at (i + 1/2) dp carries dp^2), so the mesh
   // through them lies dp/2 inside the material on every face: the boundary layer of depth dp/2
@@ -72,7 +77,7 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
     find_wall_strips(mesh_, x, boundaries_, geometry_, spacing_, layer, wall_strips_);
     strips = &wall_strips_;
   }
-  if (remesh) {
+  if (from_scratch) {
     build_smoothing_cells(mesh_, x, cells_, layer, strips);
   } else {
     refill_smoothing_cells(mesh_, x, cells_, layer, strips);  // same triangles: same rows
@@ -95,12 +100,6 @@ void NodalDiscretisation::refill(const std::vector<Vec2>& x) {
 
 namespace duet::spfem {
 
-std::string NodalDiscretisation::resume_refusal() const {
-  if (options_.remesh == Remesh::every_step) return "";
-  return "spfem.remesh = angle keeps a mesh from step to step that the frames do not hold; "
-         "resume needs spfem.remesh = every-step";
-}
-
 void NodalDiscretisation::save_state(StateBag& state, const std::string& key) const {
   const MeshCounters& c = counters_;
   put(state, key,
@@ -108,9 +107,18 @@ void NodalDiscretisation::save_state(StateBag& state, const std::string& key) co
                           double(c.surface_nodes), double(c.components),
                           double(c.isolated_nodes_max), c.smallest_angle});
   put_bits(state, key + ".attached", wall_strips_.attached);
+  if (options_.remesh == Remesh::angle) {
+    std::vector<double> triangles;
+    triangles.reserve(3 * mesh_.triangles.size());
+    for (const Triangle& t : mesh_.triangles) triangles.insert(triangles.end(), t.begin(), t.end());
+    put(state, key + ".triangles", triangles);
+    put(state, key + ".have_mesh", have_mesh_ ? 1.0 : 0.0);
+    put(state, key + ".cot_limit", remesh_trigger_.cot_limit);
+  }
 }
 
-void NodalDiscretisation::restore_state(const StateBag& state, const std::string& key) {
+void NodalDiscretisation::restore_state(const StateBag& state, const std::string& key,
+                                        std::size_t nodes) {
   const std::vector<double>& v = entry(state, key);
   if (v.size() != 7) throw std::runtime_error("the saved state's '" + key + "' has another size");
   counters_.remeshes = static_cast<long>(v[0]);
@@ -121,6 +129,27 @@ void NodalDiscretisation::restore_state(const StateBag& state, const std::string
   counters_.isolated_nodes_max = static_cast<std::size_t>(v[5]);
   counters_.smallest_angle = v[6];
   get_bits(state, key + ".attached", wall_strips_.attached);
+  if (options_.remesh == Remesh::angle) {
+    // The mesh the run kept, in the order it listed its triangles (the frame's own), and their
+    // limits; labels and cells follow at the next update (restart_point).
+    const std::vector<double>& t = entry(state, key + ".triangles");
+    if (t.size() % 3 != 0) throw_bad_entry(key + ".triangles", "is not a list of triangles");
+    mesh_.triangles.resize(t.size() / 3);
+    for (std::size_t e = 0; e < mesh_.triangles.size(); ++e) {
+      for (int k = 0; k < 3; ++k) {
+        const double node = t[3 * e + std::size_t(k)];
+        if (!(node >= 0.0 && node < double(nodes)))
+          throw_bad_entry(key + ".triangles", "names no node");
+        mesh_.triangles[e][std::size_t(k)] = static_cast<std::int32_t>(node);
+      }
+    }
+    label_mesh(nodes, mesh_);
+    have_mesh_ = scalar(state, key + ".have_mesh") != 0.0;
+    get(state, key + ".cot_limit", remesh_trigger_.cot_limit);
+    if (remesh_trigger_.cot_limit.size() != mesh_.triangles.size()) {
+      throw_bad_entry(key + ".cot_limit", "is not one limit per triangle");
+    }
+  }
 }
 
 }  // namespace duet::spfem

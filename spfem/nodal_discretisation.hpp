@@ -60,9 +60,6 @@ class NodalDiscretisation {
   /// Lists each new mesh's triangles in an order of the triangulation alone (order_canonically):
   /// the implicit solver's increments then repeat exactly after `duet run --resume`.
   void order_meshes_canonically(bool canonical) { canonical_order_ = canonical; }
-  /// The next mesh is built anew rather than moved and flipped from the last (a restart point:
-  /// the explicit solver's frames, from which a resumed run starts with no triangulation).
-  void build_next_mesh_fresh() { fresh_next_ = true; }
 
   /// True when row k carries boundary-layer or wall-strip terms (a surface node, layer on).
   bool has_layer_terms(std::size_t k) const {
@@ -86,13 +83,18 @@ class NodalDiscretisation {
   const WallStrips& wall_strips() const { return wall_strips_; }
   WallStrips& wall_strips() { return wall_strips_; }
   const MeshCounters& counters() const { return counters_; }
-  /// Empty when the mesh is rebuilt at every update (spfem.remesh = every-step), so the counters
-  /// are all a resumed run needs of it; else why a frame cannot resume it.
-  std::string resume_refusal() const;
-  /// The mesh counters and the nodes the no-slip walls hold (wall_strips().attached, kept from
-  /// step to step) into / from a frame's state under `key`.
+  /// What a resumed run needs of it, into / from a frame's state under `key`: the mesh counters,
+  /// the nodes the no-slip walls hold (wall_strips().attached, kept from step to step) and, with
+  /// spfem.remesh = angle, the kept mesh's triangles and their remesh limits.
   void save_state(StateBag& state, const std::string& key) const;
-  void restore_state(const StateBag& state, const std::string& key);
+  void restore_state(const StateBag& state, const std::string& key, std::size_t nodes);
+  /// A frame from which a run may be resumed: the next update builds from scratch what a resumed
+  /// run cannot have kept (a fresh triangulation at the next remesh instead of a moved and
+  /// flipped one; the kept mesh's labels and smoothing cells), so both runs go on alike.
+  void restart_point() {
+    fresh_next_ = true;
+    cells_from_scratch_ = true;
+  }
 
  private:
   duet::SpfemOptions options_;
@@ -105,7 +107,8 @@ class NodalDiscretisation {
   WallStrips wall_strips_;        // no-slip (and free-slip) walls as strips of the smoothing
   bool have_mesh_ = false;
   bool canonical_order_ = false;
-  bool fresh_next_ = false;
+  bool fresh_next_ = false;          // restart_point: the next remesh builds anew
+  bool cells_from_scratch_ = false;  // restart_point: the next update labels and builds cells
   MeshCounters counters_;
 };
 

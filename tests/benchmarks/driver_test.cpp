@@ -105,6 +105,27 @@ std::string read_text(const std::string& path) {
   return text.str();
 }
 
+TEST(Driver, AMethodThatKeepsNoStateIsRefusedAResumeWithTheReason) {
+  // A run of a method whose frames hold no state (the test solver keeps the default refusal)
+  const Scene scene = load_scene_from_string(kScene, "moving-block.toml");
+  RunOptions options{out_dir("no-state"), false};
+  run_scene(scene, ballistic({}), options);
+  EXPECT_NE(read_text(options.out_dir + "/metrics.json").find("\"resumable\": false"),
+            std::string::npos);
+  EXPECT_TRUE(read_state(options.out_dir + "/run.h5", 0).empty());
+  // Act / Assert: resuming it is bad input naming the folder, the method and why
+  options.resume = true;
+  try {
+    run_scene(scene, ballistic({}), options);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(options.out_dir), std::string::npos) << message;
+    EXPECT_NE(message.find("ballistic: this method does not save its state"), std::string::npos)
+        << message;
+  }
+}
+
 TEST(Driver, CompletedRunScoresItsMeasureAgainstTheReference) {
   const Scene scene = load_scene_from_string(kScene, "moving-block.toml");
   RunOptions options{out_dir("completed"), false};

@@ -122,14 +122,16 @@ TEST_P(Resume, AKilledRunGoesOnAsIfItHadNeverStopped) {
 
 // The footing (a rough rigid footing pushed into Tresca clay, 81 frames) early in the elastic part
 // and late under the plateau, through the SPFEM methods; the sand collapse (hypoplastic, no-slip
-// floor, 101 frames, Verlet) through sph.
+// floor, 101 frames, Verlet) through sph; the Bui collapse through espfem, which keeps its mesh
+// between remeshes on the angle trigger (spfem.remesh = angle: the kept mesh is in the state).
 INSTANTIATE_TEST_SUITE_P(KilledAfterFrames, Resume,
                          testing::Values(ResumeCase{"footing", "ispfem", "0.25", 8},
                                          ResumeCase{"footing", "ispfem", "0.25", 50},
                                          ResumeCase{"footing", "espfem", "0.25", 8},
                                          ResumeCase{"footing", "espfem", "0.25", 50},
                                          ResumeCase{"collapse", "sph", "0.01", 12},
-                                         ResumeCase{"collapse", "sph", "0.01", 60}));
+                                         ResumeCase{"collapse", "sph", "0.01", 60},
+                                         ResumeCase{"collapse-bui", "espfem", "0.01", 30}));
 
 /// `duet run --resume DIR` and what it said.
 test::DuetResult resume(const fs::path& dir) {
@@ -150,27 +152,6 @@ TEST(ResumeRefusal, ACompletedRunHasNothingToGoOnWith) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("the run completed (t = 0.2 s); nothing to go on with"),
             std::string::npos)
-      << r.output;
-}
-
-TEST(ResumeRefusal, AMeshKeptFromStepToStepSaysWhy) {
-  // espfem with spfem.remesh = angle, killed before it wrote metrics.json: its frames hold no
-  // state, for the mesh it keeps is not in them.
-  const fs::path out = fs::temp_directory_path() / "duet-resume-angle";
-  fs::remove_all(out);
-  const test::DuetResult run = test::run_duet(
-      std::string("run '") + DUET_SOURCE_DIR +
-      "/benchmarks/scenes/bar.toml' --method espfem --spacing 0.02 --set time.end_time=0.002 "
-      "--quiet --no-plots --out " +
-      quoted(out));
-  ASSERT_EQ(run.status, 0) << run.output;
-  const Json metrics = read_json((out / "metrics.json").string());
-  EXPECT_FALSE(metrics.find("resumable")->boolean());
-  EXPECT_TRUE(read_state((out / "run.h5").string(), 0).empty());
-  fs::remove(out / "metrics.json");
-  const test::DuetResult r = resume(out);
-  EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("spfem.remesh = angle keeps a mesh from step to step"), std::string::npos)
       << r.output;
 }
 
