@@ -234,6 +234,14 @@ Wall read_wall(const std::string& name, SectionReader& r) {
   Wall w;
   w.name = name;
   w.points = r.points("points", 2);
+  // A segment of zero length has no normal: the solvers cannot orient it (the fuzzer's repeated
+  // points reached the SPH wall set-up as an internal error, exit 1).
+  for (std::size_t k = 1; k < w.points.size(); ++k) {
+    if (w.points[k] == w.points[k - 1]) {
+      r.fail("points", "point " + std::to_string(k + 1) + " repeats the one before it",
+             "a polyline of distinct consecutive [x, y] points");
+    }
+  }
   w.condition = r.choice("condition", {"no-slip", "free-slip"}, "no-slip") == "no-slip"
                     ? WallCondition::no_slip
                     : WallCondition::free_slip;

@@ -143,7 +143,14 @@ double SectionReader::as_number(std::string_view key, const toml::node& n) const
 Vec2 SectionReader::as_vec2(std::string_view key, const toml::node& n) const {
   const toml::array* a = n.as_array();
   if (!a || a->size() != 2) fail(key, "wrong type: " + describe_type(n), "[x, y]");
-  return Vec2(as_number(key, *a->get(0)), as_number(key, *a->get(1)));
+  const Vec2 v(as_number(key, *a->get(0)), as_number(key, *a->get(1)));
+  // nan and inf are TOML numbers; a point or a vector of them is no geometry (the fuzzer's nan
+  // in a wall reached the SPH cell list as an internal error, exit 1)
+  if (!v.allFinite()) {
+    fail(key, "[" + format_number(v.x()) + ", " + format_number(v.y()) + "]",
+         "finite numbers in [x, y]");
+  }
+  return v;
 }
 
 double SectionReader::number(std::string_view key, const NumberCheck& check) {

@@ -21,7 +21,11 @@ constexpr std::array<const char*, 4> kTriaxialKeys{"Ei", "nu", "phi", "psi"};
 // Sub-step size: |d_strain| per sub-step times the rate bound stays below this (RK4 is accurate to
 // about 1e-7 relative per sub-step there and stable up to 2.78).
 constexpr double kSubstepProduct = 0.1;
-constexpr int kMaxSubsteps = 1000000;
+// A strain increment that needs more sub-steps than this is not integrated: the stress is set to
+// NaN and the solver reports it (an explicit run fails, an implicit increment is halved). With the
+// sand's constants (rate bound 1,360) that is |d_strain| > 0.74, far beyond any step; a scene
+// with c2 = -1e308 took a million sub-steps per particle and step, and a run hung (scene fuzzer).
+constexpr int kMaxSubsteps = 10000;
 
 std::vector<std::string> given(const Parameters& parameters,
                                const std::array<const char*, 4>& keys) {
@@ -188,8 +192,8 @@ std::vector<InternalVariable> Hypoplastic::internal_variables() const {
 
 int Hypoplastic::substeps(double strain_norm) const {
   const double n = std::ceil(strain_norm * rate_bound_ / kSubstepProduct);
-  if (!(n >= 1.0)) return 1;
-  return n >= kMaxSubsteps ? kMaxSubsteps : static_cast<int>(n);
+  if (!(n <= kMaxSubsteps)) return 0;  // too many (or NaN): not integrated
+  return n >= 1.0 ? static_cast<int>(n) : 1;
 }
 
 Mat3 Hypoplastic::admissible_eta(const Mat3& stress) const {
@@ -211,6 +215,10 @@ void Hypoplastic::integrate(const Mat3& d_strain, Mat3& stress, std::span<double
     count_correction(internal);
   }
   const int n = substeps(strain_norm);
+  if (n == 0) {
+    stress.setConstant(std::numeric_limits<double>::quiet_NaN());  // reported by the solver
+    return;
+  }
   const Mat3 step = d_strain / n;
   for (int k = 0; k < n; ++k) {
     eta = runge_kutta_step(parameters_.constants, eta, step);

@@ -53,7 +53,9 @@ class Hypoplastic final : public Model {
   void correct(Mat3& stress, std::span<double> internal) const override;
 
   const HypoplasticParameters& parameters() const { return parameters_; }
-  /// Number of explicit sub-steps integrate() uses for an increment of norm |d_strain|.
+  /// Number of explicit sub-steps integrate() uses for an increment of norm |d_strain|; 0 when it
+  /// would need more than 10,000 (integrate() then sets the stress to NaN, which the solver
+  /// reports, rather than run a million sub-steps).
   int substeps(double strain_norm) const;
 
  private:

@@ -68,6 +68,25 @@ TEST(SceneLoader, FillsEveryDefaultFromThePapers) {
   EXPECT_EQ(s.bodies[0].material_index, 0);
 }
 
+TEST(SceneLoader, AWallWithARepeatedPointIsRefusedNamingIt) {
+  // A segment of zero length has no normal (found by the scene fuzzer: exit 1 from the SPH walls)
+  std::string text = kScene;
+  text.replace(text.find("[[0.0, 0.0], [0.6, 0.0]]"), 24, "[[0.0, 0.0], [0.6, 0.0], [0.6, 0.0]]");
+  const std::string message = refusal(text);
+  EXPECT_NE(message.find("scene.toml:"), std::string::npos) << message;
+  EXPECT_NE(message.find("wall.floor.points: point 3 repeats the one before it"), std::string::npos)
+      << message;
+}
+
+TEST(SceneLoader, ANonFinitePointIsRefusedNamingIt) {
+  std::string text = kScene;
+  text.replace(text.find("[[0.0, 0.0], [0.6, 0.0]]"), 24, "[[0.0, 0.0], [nan, 0.0]]");
+  const std::string message = refusal(text);
+  EXPECT_NE(message.find("wall.floor.points: [nan, 0]"), std::string::npos) << message;
+  EXPECT_NE(message.find("finite numbers in [x, y]"), std::string::npos) << message;
+  EXPECT_NE(refusal(kScene, {"gravity=[0.0, inf]"}).find("finite numbers"), std::string::npos);
+}
+
 TEST(SceneLoader, GravityDefaultsToZero) {
   std::string text = kScene;
   text.replace(text.find("gravity = [0.0, -9.81]\n"), 24, "");

@@ -154,6 +154,26 @@ TEST(Hypoplastic, OneLargeIncrementMatchesManySmallOnes) {
   EXPECT_EQ(internal[0], 0.0);
 }
 
+TEST(Hypoplastic, AnIncrementBeyondTheSubstepCapIsNotIntegratedButSaidNonFinite) {
+  // Arrange: a constant of -1e8 (a scene typo the fuzzer makes: c2 = -1e308 ran a million
+  // sub-steps per particle and step) and an ordinary increment
+  HypoplasticParameters p = oedometer_row();
+  p.constants.c2 = -1e8;
+  const Hypoplastic model(p);
+  Mat3 d = Mat3::Zero();
+  d.diagonal() << -1e-4, 0.0, 0.0;
+  Mat3 stress = -100e3 * Mat3::Identity();
+  std::vector<double> internal{0.0};
+  // Act
+  model.integrate(d, stress, internal);
+  // Assert: NaN, for the solver to report; the sand's own constants integrate the same increment
+  EXPECT_EQ(model.substeps(norm(d)), 0);
+  EXPECT_FALSE(stress.allFinite());
+  Mat3 ordinary = -100e3 * Mat3::Identity();
+  Hypoplastic(oedometer_row()).integrate(d, ordinary, internal);
+  EXPECT_TRUE(ordinary.allFinite());
+}
+
 TEST(Hypoplastic, CohesionTranslatesTheStress) {
   // Arrange: Peng 2015 eq 24-25, the rate of sigma with cohesion c is the rate of eta = sigma - cI
   const Hypoplastic cohesive(oedometer_row(5e3));
