@@ -1,7 +1,7 @@
 #pragma once
 // SIGINT / SIGTERM as a request, not a kill: the first signal is recorded and the run loop ends
 // after the step in progress (frame and metrics.json written, status "interrupted"); a second
-// signal ends the process at once (every frame already written was flushed when written).
+// signal ends the process at once (every frame already written is a closed file).
 
 namespace duet {
 
