@@ -337,6 +337,37 @@ bool is_integer(hid_t location, const std::string& name, const std::string& path
   return H5Tget_class(type.get()) == H5T_INTEGER;
 }
 
+Handle open_group(hid_t location, const std::string& name, const std::string& path) {
+  return Handle(checked(H5Gopen2(location, name.c_str(), H5P_DEFAULT), path, "open group " + name),
+                H5Gclose);
+}
+
+/// The group of frame `index` in an open run.h5; throws naming the path when it lists none.
+std::string listed_frame(hid_t file, std::size_t index, const std::string& path) {
+  const std::string name = frame_group(index);
+  if (!link_exists(file, "/frames") || !link_exists(file, name)) {
+    throw std::runtime_error(path + ": no frame " + std::to_string(index) + " (" + name + ")");
+  }
+  return name;
+}
+
+/// The inverses of rows_of_vec2 and rows_of_mat3: rows of 3 (z dropped) and of 9 (row-major).
+std::vector<Vec2> vec2_from_rows(const std::vector<double>& v) {
+  std::vector<Vec2> out(v.size() / 3);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = Vec2(v[3 * i], v[3 * i + 1]);
+  return out;
+}
+
+std::vector<Mat3> mat3_from_rows(const std::vector<double>& v) {
+  std::vector<Mat3> out(v.size() / 9);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) out[i](r, c) = v[9 * i + 3 * r + c];
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -457,9 +488,10 @@ RunWriter::RunWriter(const std::string& out_dir, ContinueAfter from)
   std::error_code error;
   for (const auto& entry : std::filesystem::directory_iterator(out_dir + "/frames", error)) {
     const std::string name = entry.path().filename().string();
+    // NNNNNN.h5 with NNNNNN <= frame (digits checked before they are read as a number)
     const bool kept = name.size() == 9 && name.compare(6, 3, ".h5") == 0 &&
-                      std::stoul(name.substr(0, 6)) <= from.frame &&
-                      name.find_first_not_of("0123456789") == 6;
+                      name.find_first_not_of("0123456789") == 6 &&
+                      std::stoul(name.substr(0, 6)) <= from.frame;
     if (!kept) std::filesystem::remove(entry.path(), error);
   }
   if (error) throw std::runtime_error(out_dir + "/frames: " + error.message());
@@ -630,28 +662,12 @@ void RunWriter::write_series(const std::vector<std::string>& names,
 Frame read_frame(const std::string& path, std::size_t index) {
   const QuietErrors quiet;
   const Handle file = open_for_reading(path);
-  const std::string name = frame_group(index);
-  if (!link_exists(file.get(), "/frames") || !link_exists(file.get(), name)) {
-    throw std::runtime_error(path + ": no frame " + std::to_string(index) + " (" + name + ")");
-  }
-  const Handle group(
-      checked(H5Gopen2(file.get(), name.c_str(), H5P_DEFAULT), path, "open group " + name),
-      H5Gclose);
+  const std::string name = listed_frame(file.get(), index, path);
+  const Handle group = open_group(file.get(), name, path);
   Frame frame;
   frame.time = read_double_attribute(group.get(), "time", path);
-
-  const std::vector<double> position = read_doubles(group.get(), "position", path);
-  frame.position.resize(position.size() / 3);
-  for (std::size_t i = 0; i < frame.position.size(); ++i) {
-    frame.position[i] = Vec2(position[3 * i], position[3 * i + 1]);
-  }
-  const std::vector<double> stress = read_doubles(group.get(), "stress", path);
-  frame.stress.resize(stress.size() / 9);
-  for (std::size_t i = 0; i < frame.stress.size(); ++i) {
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) frame.stress[i](r, c) = stress[9 * i + 3 * r + c];
-    }
-  }
+  frame.position = vec2_from_rows(read_doubles(group.get(), "position", path));
+  frame.stress = mat3_from_rows(read_doubles(group.get(), "stress", path));
 
   for (const std::string& link : link_names(group.get(), path, name)) {
     if (!is_dataset(group.get(), link)) continue;  // the state group
@@ -665,16 +681,10 @@ Frame read_frame(const std::string& path, std::size_t index) {
 StateBag read_state(const std::string& path, std::size_t index) {
   const QuietErrors quiet;
   const Handle file = open_for_reading(path);
-  const std::string name = frame_group(index);
-  if (!link_exists(file.get(), "/frames") || !link_exists(file.get(), name)) {
-    throw std::runtime_error(path + ": no frame " + std::to_string(index) + " (" + name + ")");
-  }
   StateBag state;
-  const std::string group_name = name + "/state";
+  const std::string group_name = listed_frame(file.get(), index, path) + "/state";
   if (!link_exists(file.get(), group_name)) return state;
-  const Handle group(checked(H5Gopen2(file.get(), group_name.c_str(), H5P_DEFAULT), path,
-                             "open group " + group_name),
-                     H5Gclose);
+  const Handle group = open_group(file.get(), group_name, path);
   for (const std::string& key : link_names(group.get(), path, group_name)) {
     state[key] = read_doubles(group.get(), key, path);
   }
@@ -684,13 +694,8 @@ StateBag read_state(const std::string& path, std::size_t index) {
 void read_particle_state(const std::string& path, std::size_t index, Particles& particles) {
   const QuietErrors quiet;
   const Handle file = open_for_reading(path);
-  const std::string name = frame_group(index);
-  if (!link_exists(file.get(), "/frames") || !link_exists(file.get(), name)) {
-    throw std::runtime_error(path + ": no frame " + std::to_string(index) + " (" + name + ")");
-  }
-  const Handle group(
-      checked(H5Gopen2(file.get(), name.c_str(), H5P_DEFAULT), path, "open group " + name),
-      H5Gclose);
+  const std::string name = listed_frame(file.get(), index, path);
+  const Handle group = open_group(file.get(), name, path);
   const std::size_t n = particles.size();
   const auto values = [&](const std::string& field, std::size_t columns) {
     std::vector<double> v = read_doubles(group.get(), field, path);
@@ -701,23 +706,11 @@ void read_particle_state(const std::string& path, std::size_t index, Particles& 
     }
     return v;
   };
-  const auto vectors = [&](const std::string& field, std::vector<Vec2>& out) {
-    const std::vector<double> v = values(field, 3);
-    for (std::size_t i = 0; i < n; ++i) out[i] = Vec2(v[3 * i], v[3 * i + 1]);
-  };
-  const auto tensors = [&](const std::string& field, std::vector<Mat3>& out) {
-    const std::vector<double> v = values(field, 9);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) out[i](r, c) = v[9 * i + 3 * r + c];
-      }
-    }
-  };
-  vectors("position", particles.position);
-  vectors("velocity", particles.velocity);
-  vectors("displacement", particles.displacement);
-  tensors("stress", particles.stress);
-  tensors("strain", particles.strain);
+  particles.position = vec2_from_rows(values("position", 3));
+  particles.velocity = vec2_from_rows(values("velocity", 3));
+  particles.displacement = vec2_from_rows(values("displacement", 3));
+  particles.stress = mat3_from_rows(values("stress", 9));
+  particles.strain = mat3_from_rows(values("strain", 9));
   particles.mass = values("mass", 1);
   particles.volume = values("volume", 1);
   particles.density = values("density", 1);
@@ -732,8 +725,7 @@ void read_particle_state(const std::string& path, std::size_t index, Particles& 
 std::size_t count_frames(const std::string& path) {
   const QuietErrors quiet;
   const Handle file = open_for_reading(path);
-  const Handle group(
-      checked(H5Gopen2(file.get(), "/frames", H5P_DEFAULT), path, "open group /frames"), H5Gclose);
+  const Handle group = open_group(file.get(), "/frames", path);
   H5G_info_t info;
   checked(H5Gget_info(group.get(), &info), path, "H5Gget_info(/frames)");
   return static_cast<std::size_t>(info.nlinks);
@@ -752,8 +744,7 @@ std::vector<double> read_series(const std::string& path, const std::string& name
 RunMetadata read_metadata(const std::string& path) {
   const QuietErrors quiet;
   const Handle file = open_for_reading(path);
-  const Handle meta(checked(H5Gopen2(file.get(), "/meta", H5P_DEFAULT), path, "open group /meta"),
-                    H5Gclose);
+  const Handle meta = open_group(file.get(), "/meta", path);
   RunMetadata m;
   m.scene = read_string_attribute(meta.get(), "scene", path);
   m.method = read_string_attribute(meta.get(), "method", path);

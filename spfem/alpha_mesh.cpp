@@ -237,15 +237,6 @@ void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& 
   label_from_faces(delaunay, points.size(), mesh, s);
 }
 
-void order_canonically(std::size_t n_nodes, AlphaMesh& mesh) {
-  for (Triangle& t : mesh.triangles) {
-    const int first = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
-    std::rotate(t.begin(), t.begin() + first, t.end());
-  }
-  std::sort(mesh.triangles.begin(), mesh.triangles.end());
-  label_mesh(n_nodes, mesh);
-}
-
 void label_mesh(std::size_t n_nodes, AlphaMesh& mesh) {
   const auto n = static_cast<std::int32_t>(n_nodes);
   Scratch& s = scratch;

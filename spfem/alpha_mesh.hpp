@@ -35,13 +35,6 @@ struct AlphaMesh {
 void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh,
                       bool fresh = false);
 
-/// The triangles in one order that depends on the triangulation alone, not on its history: each
-/// rotated to start at its smallest node (orientation kept), the list sorted, then labelled
-/// again (label_mesh). build_alpha_mesh moves and flips the last triangulation when it can, which
-/// lists the same triangles as a fresh build in another order; sums over them then differ in
-/// round-off, and a run resumed from a frame (a fresh build) would not repeat the run it continues.
-void order_canonically(std::size_t n_nodes, AlphaMesh& mesh);
-
 /// Recomputes `surface`, `component` and `n_components` of `mesh` from its triangles (for a mesh
 /// kept across steps, or one built by hand in a test). `n_nodes` is the number of points.
 void label_mesh(std::size_t n_nodes, AlphaMesh& mesh);

@@ -32,8 +32,6 @@ std::string format_residuals(const std::vector<double>& r) {
 
 ImplicitSolver::ImplicitSolver(IspfemSetup setup)
     : setup_(std::move(setup)), discretisation_(setup_.options, setup_.spacing, setup_.boundaries) {
-  // An increment costs Newton's iterations, a sort of the triangles nothing: bitwise resume.
-  discretisation_.order_meshes_canonically(true);
   const duet::SpfemImplicitOptions& o = setup_.implicit;
   if (!(o.tolerance > 0.0)) throw InputError("spfem.implicit.tolerance must be > 0");
   if (!(o.displacement_tolerance > 0.0)) {

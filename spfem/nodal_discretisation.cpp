@@ -48,7 +48,6 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
   if (remesh) {
     build_alpha_mesh(x, o.alpha_factor * spacing_, mesh_, fresh_next_);
     fresh_next_ = false;
-    if (canonical_order_) order_canonically(x.size(), mesh_);
     have_mesh_ = true;
     ++counters_.remeshes;
     counters_.triangles = mesh_.triangles.size();

@@ -57,9 +57,6 @@ class NodalDiscretisation {
   /// Keeps the boundary layer's discrete choices of the last update in later refills (true)
   /// or lets every fill choose again (false, the default; update() always chooses again).
   void freeze_layer_branches(bool frozen) { cells_.frozen_branches = frozen; }
-  /// Lists each new mesh's triangles in an order of the triangulation alone (order_canonically):
-  /// the implicit solver's increments then repeat exactly after `duet run --resume`.
-  void order_meshes_canonically(bool canonical) { canonical_order_ = canonical; }
 
   /// True when row k carries boundary-layer or wall-strip terms (a surface node, layer on).
   bool has_layer_terms(std::size_t k) const {
@@ -106,7 +103,6 @@ class NodalDiscretisation {
   RemeshTrigger remesh_trigger_;  // remesh = angle: the limits of the kept triangles
   WallStrips wall_strips_;        // no-slip (and free-slip) walls as strips of the smoothing
   bool have_mesh_ = false;
-  bool canonical_order_ = false;
   bool fresh_next_ = false;          // restart_point: the next remesh builds anew
   bool cells_from_scratch_ = false;  // restart_point: the next update labels and builds cells
   MeshCounters counters_;

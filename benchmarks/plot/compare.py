@@ -50,6 +50,14 @@ def log_axis(axis, formatter):
     axis.set_minor_formatter(NullFormatter())
 
 
+def wall_time_limits(ax, rows):
+    """x limits around the runs' wall times, at least a decade wide (compare.py, summary.py)."""
+    times = [number(r["wall_seconds"]) for r in rows if number(r["wall_seconds"])]
+    if times:
+        middle = (min(times) * max(times)) ** 0.5
+        ax.set_xlim(min(min(times) / 1.5, middle / 3.2), max(max(times) * 1.5, middle * 3.2))
+
+
 def methods_of(rows):
     methods = []
     for row in rows:
@@ -105,10 +113,7 @@ def error_chart(rows, target, title):
         low, high = min(finite_errors), max(finite_errors)
         middle = (low * high) ** 0.5
         ax.set_ylim(min(low / 2, middle / 3.2), max(top * 1.5, middle * 3.2))
-    times = [number(r["wall_seconds"]) for r in rows if number(r["wall_seconds"])]
-    if times:
-        middle = (min(times) * max(times)) ** 0.5
-        ax.set_xlim(min(min(times) / 1.5, middle / 3.2), max(max(times) * 1.5, middle * 3.2))
+    wall_time_limits(ax, rows)
     log_axis(ax.xaxis, plain)
     log_axis(ax.yaxis, percent)
     ax.set_xlabel("wall time (s)")

@@ -17,7 +17,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from compare import log_axis, number, percent, plain  # noqa: E402
+from compare import log_axis, number, percent, plain, wall_time_limits  # noqa: E402
 
 COLOURS = {"sph": "tab:blue", "espfem": "tab:orange", "ispfem": "tab:green"}
 
@@ -65,10 +65,7 @@ def main():
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_ylim(low, high)
-        times = [number(r["wall_seconds"]) for r in runs if number(r["wall_seconds"])]
-        if times:
-            middle = (min(times) * max(times)) ** 0.5
-            ax.set_xlim(min(min(times) / 1.5, middle / 3.2), max(max(times) * 1.5, middle * 3.2))
+        wall_time_limits(ax, runs)
         log_axis(ax.xaxis, plain)
         log_axis(ax.yaxis, percent)
         ax.tick_params(labelsize=7)
