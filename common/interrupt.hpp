@@ -1,7 +1,9 @@
 #pragma once
 // SIGINT / SIGTERM as a request, not a kill: the first signal is recorded and the run loop ends
 // after the step in progress (frame and metrics.json written, status "interrupted"); a second
-// signal ends the process at once (every frame already written is a closed file).
+// signal ends the process at once (every frame already written is a closed file). The same
+// signal again within a second is the first delivered twice (`timeout`, batch systems: the
+// process, then its group), which once ended a run before it wrote its metrics.
 
 namespace duet {
 
