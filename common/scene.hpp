@@ -47,7 +47,9 @@ struct Body {
   Vec2 initial_velocity = Vec2::Zero();
 };
 
-enum class WallCondition { no_slip, free_slip };
+// symmetry: a free-slip plane of symmetry, which holds the normal motion both ways (the material
+// on its other side is the mirror image); a free-slip wall only pushes.
+enum class WallCondition { no_slip, free_slip, symmetry };
 
 /// A wall: a polyline (open, or closed when the last point repeats the first). It either
 /// translates with `velocity` or, when `radial` is set, every point moves away from `centre`

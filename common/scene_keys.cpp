@@ -86,7 +86,8 @@ std::vector<SceneKey> make_keys() {
       // --- [wall.<name>] ---
       {"wall.<name>", "points", "[[x, y], ...]", "m", kReq,
        "polyline (closed when the last point repeats the first)"},
-      {"wall.<name>", "condition", "string", "", "\"no-slip\"", "no-slip | free-slip"},
+      {"wall.<name>", "condition", "string", "", "\"no-slip\"",
+       "no-slip | free-slip | symmetry (free-slip, held both ways)"},
       {"wall.<name>", "velocity", "[[t, vx, vy], ...]", "s, m/s", "(fixed)",
        "translation speed, piecewise linear in time"},
       {"wall.<name>", "centre", "[x, y]", "m", "(required with radial_velocity)",

@@ -242,9 +242,11 @@ Wall read_wall(const std::string& name, SectionReader& r) {
              "a polyline of distinct consecutive [x, y] points");
     }
   }
-  w.condition = r.choice("condition", {"no-slip", "free-slip"}, "no-slip") == "no-slip"
-                    ? WallCondition::no_slip
-                    : WallCondition::free_slip;
+  const std::string condition =
+      r.choice("condition", {"no-slip", "free-slip", "symmetry"}, "no-slip");
+  w.condition = condition == "no-slip"     ? WallCondition::no_slip
+                : condition == "free-slip" ? WallCondition::free_slip
+                                           : WallCondition::symmetry;
   if (r.has("radial_velocity")) {
     if (r.has("velocity")) {
       r.fail("velocity", "given together with radial_velocity",

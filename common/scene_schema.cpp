@@ -307,7 +307,15 @@ void SectionReader::finish(const std::vector<std::string>& not_mine) const {
 namespace duet {
 
 const char* to_string(WallCondition c) {
-  return c == WallCondition::no_slip ? "no-slip" : "free-slip";
+  switch (c) {
+    case WallCondition::no_slip:
+      return "no-slip";
+    case WallCondition::free_slip:
+      return "free-slip";
+    case WallCondition::symmetry:
+      return "symmetry";
+  }
+  return "?";
 }
 const char* to_string(Surface s) {
   switch (s) {

@@ -93,26 +93,10 @@ std::vector<NodeConstraint> ImplicitSolver::find_constraints(const std::vector<V
       found.clear();
       find_contacts(geometry[b], boundary.rigid_body, std::int32_t(i), std::int32_t(b), x[i], reach,
                     depth, found);
-      if (found.empty() && !boundary.rigid_body) {
-        // A wall's convex vertex (the cavity's chords): a node in the wedge beyond it projects
-        // onto neither segment, so find_contacts (vertices for rigid bodies only) misses it and
-        // the wall walked through it (the cavity at dp 0.25 failed at a/a0 1.24). Touch the
-        // vertex, along the line from it to the node.
-        const BoundaryGeometry& g = geometry[b];
-        for (std::size_t v = 1; v + 1 < g.points.size(); ++v) {
-          const Vec2 d = x[i] - g.points[v];
-          const double distance = d.norm();
-          if (!(distance > 0.0) || distance > reach) continue;
-          if (d.dot(g.normals[v - 1]) <= 0.0 || d.dot(g.normals[v]) <= 0.0) continue;
-          NodeContact c;
-          c.node = std::int32_t(i);
-          c.boundary = std::int32_t(b);
-          c.normal = d / distance;
-          c.distance = distance;
-          c.point = g.points[v];
-          found.push_back(c);
-          break;
-        }
+      NodeContact vertex;
+      if (found.empty() && !boundary.rigid_body &&
+          touch_wall_vertex(geometry[b], std::int32_t(i), std::int32_t(b), x[i], reach, vertex)) {
+        found.push_back(vertex);  // the cavity at dp 0.25 failed at a/a0 1.24 without it
       }
       for (const NodeContact& c : found) {
         if (crossed_only && !(c.distance < 0.0)) continue;

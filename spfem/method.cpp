@@ -42,9 +42,10 @@ Setup make_setup(const Scene& scene) {
     b.name = w.name;
     b.polyline = w.points;
     // A no-slip wall holds its nodes (a clamp carries tension); a free-slip wall is a unilateral
-    // smooth contact.
-    b.condition =
-        w.condition == WallCondition::no_slip ? NodeCondition::bonded : NodeCondition::smooth;
+    // smooth contact; a symmetry plane holds the normal motion both ways.
+    b.condition = w.condition == WallCondition::no_slip    ? NodeCondition::bonded
+                  : w.condition == WallCondition::symmetry ? NodeCondition::symmetry
+                                                           : NodeCondition::smooth;
     b.velocity = w.velocity;
     b.radial = w.radial;
     b.centre = w.centre;

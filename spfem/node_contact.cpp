@@ -81,7 +81,20 @@ BoundaryGeometry orient_boundary(const NodeBoundary& boundary, std::span<const V
       if (u < 0.0 || u > length || std::abs(d) > reach) continue;
       (d >= 0.0 ? left : right) += 1;
     }
-    geometry.side.push_back(right > left ? -1 : 1);
+    geometry.side.push_back(left == right ? 0 : right > left ? -1 : 1);  // 0: no nodes, below
+  }
+  // Segments with no nodes of their own (left == right): the side of the nearest segment along
+  // the wall that has some. Left to the default (+1), the cavity's chords at dp 0.5 faced the
+  // cavity, and the expanding wall passed through the soil's first row untouched.
+  std::vector<int>& side = geometry.side;
+  const std::vector<int> counted = side;
+  for (std::size_t s = 0; s < side.size(); ++s) {
+    if (counted[s] != 0) continue;
+    for (std::size_t k = 1; k < side.size() && side[s] == 0; ++k) {
+      if (s >= k && counted[s - k] != 0) side[s] = counted[s - k];
+      if (side[s] == 0 && s + k < side.size() && counted[s + k] != 0) side[s] = counted[s + k];
+    }
+    if (side[s] == 0) side[s] = 1;
   }
   update_geometry(boundary, 0.0, geometry);
   return geometry;
@@ -111,6 +124,22 @@ void find_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32
     if (d > reach || d <= 0.0) continue;
     out.push_back({node, boundary, r / d, d, geometry.point_velocity[k], geometry.points[k]});
   }
+}
+
+bool touch_wall_vertex(const BoundaryGeometry& geometry, std::int32_t node, std::int32_t boundary,
+                       const Vec2& x, double reach, NodeContact& out) {
+  const std::vector<Vec2>& p = geometry.points;
+  for (std::size_t v = 1; v + 1 < p.size(); ++v) {
+    const Vec2 d = x - p[v];
+    const double distance = d.norm();
+    if (!(distance > 0.0) || distance > reach) continue;
+    // in the fan: past the end of segment v - 1, before the start of segment v, soil side of both
+    if (d.dot(p[v] - p[v - 1]) < 0.0 || d.dot(p[v + 1] - p[v]) > 0.0) continue;
+    if (d.dot(geometry.normals[v - 1]) <= 0.0 || d.dot(geometry.normals[v]) <= 0.0) continue;
+    out = {node, boundary, d / distance, distance, geometry.point_velocity[v], p[v]};
+    return true;
+  }
+  return false;
 }
 
 bool project_on_boundary(const BoundaryGeometry& geometry, std::int32_t node, std::int32_t boundary,
@@ -146,6 +175,9 @@ Vec2 constrain_velocity(const NodeContact& contact, NodeCondition condition, dou
       break;
     case NodeCondition::smooth:
       if (approach < 0.0) velocity -= approach * n;
+      break;
+    case NodeCondition::symmetry:  // the mirror image holds the node both ways
+      velocity -= approach * n;
       break;
     case NodeCondition::friction: {
       if (approach >= 0.0) break;

@@ -22,7 +22,8 @@
 
 namespace duet::spfem {
 
-enum class NodeCondition { bonded, rough, smooth, friction };
+// symmetry: smooth, held both ways (a plane of symmetry); smooth only pushes.
+enum class NodeCondition { bonded, rough, smooth, friction, symmetry };
 
 /// A wall or a rigid body as the nodes see it. Translating (`velocity`) or, for a radial wall,
 /// every point moving away from `centre` at the radial speed of `radial_velocity` (cavity).
@@ -51,7 +52,9 @@ struct BoundaryGeometry {
 void update_geometry(const NodeBoundary& boundary, double t, BoundaryGeometry& geometry);
 
 /// Geometry at t = 0 with each segment's soil side: outside for a rigid body; for a wall, the side
-/// holding more of the nodes within `reach` of the segment.
+/// holding more of the nodes within `reach` of the segment. A segment that no node projects onto
+/// within `reach` (a chord shorter than the spacing, as the cavity's) takes the side of the nearest
+/// segment along the wall that has nodes: a wall keeps its soil on one side.
 BoundaryGeometry orient_boundary(const NodeBoundary& boundary, std::span<const Vec2> nodes,
                                  double reach);
 
@@ -72,6 +75,14 @@ struct NodeContact {
 void find_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32_t node,
                    std::int32_t boundary, const Vec2& x, double reach, double depth,
                    std::vector<NodeContact>& out);
+
+/// A wall's convex vertex (the cavity's chords): a node in the wedge beyond it, on the soil side of
+/// both segments that meet there, projects onto neither, so find_contacts (vertices for rigid
+/// bodies only) misses it and the wall walks through it. This touches the vertex within `reach`,
+/// along the line from it to the node; false when there is no such vertex. Meant for a wall where
+/// find_contacts found nothing.
+bool touch_wall_vertex(const BoundaryGeometry& geometry, std::int32_t node, std::int32_t boundary,
+                       const Vec2& x, double reach, NodeContact& out);
 
 /// The segment of the boundary that `x` projects onto nearest to it on the soil side, with the
 /// signed distance in [-depth, max_distance]; false when there is none. (Wall strips: where an

@@ -29,7 +29,8 @@ bool is_no_slip_wall(const NodeBoundary& b) {
 }
 
 bool is_free_slip_wall(const NodeBoundary& b) {
-  return b.condition == NodeCondition::smooth && !b.rigid_body;
+  return (b.condition == NodeCondition::smooth || b.condition == NodeCondition::symmetry) &&
+         !b.rigid_body;
 }
 
 // Entry of node `column` in the row between row_begin and row_end (present: the strip's real nodes

@@ -40,7 +40,10 @@ SphSetup make_setup(const Scene& scene) {
     setup.models.push_back(constitutive::make_model(m.model, m.parameters, "material." + m.name));
   }
   for (const Wall& w : scene.walls) {
-    setup.walls.push_back({w.name, w.points, w.condition, wall_velocity(w)});
+    // A symmetry plane is a free-slip wall to SPH: its ghost particles mirror the material.
+    const WallCondition condition =
+        w.condition == WallCondition::symmetry ? WallCondition::free_slip : w.condition;
+    setup.walls.push_back({w.name, w.points, condition, wall_velocity(w)});
   }
   for (const RigidBody& b : scene.rigid_bodies) {
     WallVelocity velocity;
