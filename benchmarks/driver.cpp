@@ -15,6 +15,7 @@
 #include "benchmarks/material_points.hpp"
 #include "benchmarks/reports.hpp"
 #include "benchmarks/run_warnings.hpp"
+#include "benchmarks/thread_choice.hpp"
 #include "common/energy_budget.hpp"
 #include "common/h5_writer.hpp"
 #include "common/input_error.hpp"
@@ -23,6 +24,7 @@
 #include "common/lattice.hpp"
 #include "common/measures.hpp"
 #include "common/progress.hpp"
+#include "common/reaction_mean.hpp"
 #include "common/run_checks.hpp"
 #include "common/state_bag.hpp"
 
@@ -178,6 +180,13 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   const StateChecks checks(scene, particles);
   EnergyBudget budget(scene, particles, stored_elastic_energy(scene, particles));
   KineticEnergyRecord energy;
+  // An inertial run's measures sample the reactions' mean since the last sample
+  // (common/reaction_mean.hpp); a quasi-static run's, the equilibrium reactions at that time.
+  const bool inertial = solver->inertial();
+  ReactionMean reaction_mean;
+  const auto sampled_reactions = [&] {
+    return inertial ? reaction_mean.take(solver->reactions()) : solver->reactions();
+  };
 
   // All the run carries from one step to the next, for a frame's /state.
   const auto state_now = [&] {
@@ -193,6 +202,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     put(state, "driver.internal", particles.internal.values);
     measures.save_state(state);
+    reaction_mean.save_state(state);
     budget.save_state(state);
     solver->save_state(state);
     return state;
@@ -239,6 +249,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       energy.end = k[2];
       wall_before = scalar(state, "driver.wall_seconds");
       measures.restore_state(state);
+      reaction_mean.restore_state(state);
       budget.restore_state(state);
       solver->restore_state(state, particles);
       solver->restart_point();
@@ -262,7 +273,9 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       time += dt;
       ++steps;
       energy.record(time, kinetic_energy(particles));
-      budget.record(time, particles, solver->reactions());
+      const std::vector<Reaction> reactions = solver->reactions();
+      if (inertial) reaction_mean.add(reactions, dt);
+      budget.record(time, particles, reactions);
       budget.observe(energy.end);
     } catch (const NumericalFailure& e) {
       failure = Failure{e.what(), time, e.particle()};
@@ -280,14 +293,14 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       break;
     }
     // A quasi-static run's velocities are increments over a load step, not inertia.
-    if (solver->inertial()) {
+    if (inertial) {
       if (auto reason = energy_runaway(scene.checks, energy.end, budget)) {
         failure = Failure{*reason, time};
         break;
       }
     }
     if (time >= next_sample) {
-      measures.sample(time, particles, solver->reactions());
+      measures.sample(time, particles, sampled_reactions());
       next_sample += sample_interval;
     }
     if (time >= next_output) {
@@ -299,7 +312,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     if ((interrupted_by = pending_interrupt()) != 0) break;
   }
   // The last state (or the state at failure) is always a frame, unless writing is what failed.
-  if (!failure) measures.sample(time, particles, solver->reactions());
+  if (!failure) measures.sample(time, particles, sampled_reactions());
   if (!output_failed) write_output(true, false);
   const std::string status = failure ? "failed" : interrupted_by ? "interrupted" : "completed";
   if (interrupted_by) {
@@ -351,6 +364,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   }
   metrics["warnings"] = warning_list;
   metrics["commit"] = source_commit();
+  metrics["threads"] = thread_choice();
   metrics["scene_file"] = scene.path;
   write_json(options.out_dir + "/metrics.json", metrics);
   return summary_from_metrics(metrics, options.out_dir);
