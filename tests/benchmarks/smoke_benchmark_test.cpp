@@ -32,7 +32,8 @@ struct SmokeCase {
   std::string method;
   double spacing;
   Outcome outcome;
-  double bound = 0.0;  // outside: the largest scored error accepted (measured, rounded up)
+  double bound = 0.0;  // outside: the largest scored error accepted, over every scored measure
+                       // (measured, rounded up)
   std::string reason;  // fails: a fragment of the failure reason
   std::string why;
 };
@@ -79,14 +80,19 @@ TEST_P(SmokeBenchmark, CompletesWithinToleranceOrDoesWhatIsRecorded) {
       EXPECT_EQ(metrics.find(warning), std::string::npos) << warning;
     }
   }
+  // outside: at least one scored measure beyond its tolerance, none beyond the recorded bound
+  bool any_outside = false;
   for (const Reference& r : scene.references) {
     const Accuracy& a = run.accuracy.at(r.measure);
     if (c.outcome == Outcome::within) {
       EXPECT_LE(a.rel_error, r.tolerance) << r.measure << " = " << a.value;
     } else {
-      EXPECT_GT(a.rel_error, r.tolerance) << r.measure << " now meets its tolerance: update";
+      any_outside = any_outside || a.rel_error > r.tolerance;
       EXPECT_LE(a.rel_error, c.bound) << r.measure << " = " << a.value;
     }
+  }
+  if (c.outcome == Outcome::outside) {
+    EXPECT_TRUE(any_outside) << "every scored measure now meets its tolerance: update";
   }
 }
 
@@ -101,9 +107,10 @@ const std::vector<SmokeCase> kCases = {
     {"cantilever-2", "sph", 0.02, Outcome::fails, 0, "kinetic energy", "as the cantilever"},
     {"oedometer", "sph", 0.05, Outcome::within, 0, "", "K0 1.3 % (tolerance 2 %)"},
     {"collapse", "sph", 0.01, Outcome::outside, 0.40, "",
-     "run-out -36 % at dp 1 cm (tolerance 15 %): resolution; -6 % at 2.5 mm (RESULTS.md)"},
+     "run-out -36 % at dp 1 cm (tolerance 15 %): resolution; -6 % at 2.5 mm (RESULTS.md); "
+     "height -5.2 % (the top particle starts 5 % below the surface at this spacing)"},
     {"collapse-bui", "sph", 0.01, Outcome::outside, 0.30, "",
-     "run-out -26 % at dp 1 cm (tolerance 20 %): resolution; +3 % at 2 mm"},
+     "run-out -26 % at dp 1 cm (tolerance 20 %): resolution; +3 % at 2 mm; height -9 %"},
     {"footing", "sph", 1.0 / 6.0, Outcome::outside, 0.45, "",
      "q/c_u 7.09 at dp 1/6 m, +38 % (tolerance 10 %): SPH's footing does not converge in dp "
      "(0.25: 11.0, 0.1: 4.57, 1/14: 6.44; RESULTS.md). With Peng's sigma_max dummy stress and "
@@ -124,13 +131,20 @@ const std::vector<SmokeCase> kCases = {
     {"cantilever-2", "espfem", 0.02, Outcome::within, 0, "", "tip +1.7 % (tolerance 5 %)"},
     {"oedometer", "espfem", 0.05, Outcome::within, 0, "", "K0 1.5 %"},
     {"collapse", "espfem", 0.01, Outcome::outside, 0.30, "",
-     "run-out -24 % at dp 1 cm (tolerance 15 %); -10.5 % at 2 mm"},
-    {"collapse-bui", "espfem", 0.01, Outcome::within, 0, "", "run-out +6.3 %"},
-    {"footing", "espfem", 0.25, Outcome::outside, 0.15, "",
-     "q/c_u +10.4 % at dp 0.25 m (tolerance 10 %)"},
-    {"footing-deep", "espfem", 0.25, Outcome::within, 0, "", "q/c_u at w/B 0.1 +1.8 %"},
-    {"cavity", "espfem", 0.5, Outcome::fails, 0, "particle crossed wall 'cavity'",
-     "issue 15 item 5: the expanding cavity wall overruns the nodes, at t = 2.1 s at dp 0.5 m"},
+     "run-out -22 % at dp 1 cm (tolerance 15 %), -10.1 % at 2 mm; height -9.9 % (-4.4 % at 2 mm)"},
+    {"collapse-bui", "espfem", 0.01, Outcome::outside, 0.10, "",
+     "height 0.0911 m, -8.9 % at dp 1 cm (tolerance 5 %; the top particle starts 5 % below the "
+     "surface at this spacing); run-out +6.3 %"},
+    {"footing", "espfem", 0.25, Outcome::within, 0, "",
+     "q/c_u 5.136, -0.1 % (+10.4 % before the symmetry plane held both ways and the reaction "
+     "was sampled as its mean over the sample interval)"},
+    {"footing-deep", "espfem", 0.25, Outcome::within, 0, "",
+     "q/c_u at w/B 0.1 4.717, -8.3 % (+1.8 % from a single step's reaction)"},
+    {"cavity", "espfem", 0.5, Outcome::outside, 0.35, "",
+     "p/c_u 3.01 at a/a0 2, -28.8 % (tolerance 10 %): at dp 0.5 m the chorded wall's contact "
+     "pressure swings (1.8-6.4 c_u over a/a0 1.95-2.05); the mean over a/a0 1.1, 1.2, 1.5 is "
+     "within 3 % of the closed form (RESULTS.md). It failed (the wall passed through the nodes) "
+     "until the wall's chords faced the soil and its vertices touched nodes"},
     {"slope", "espfem", 0.5, Outcome::unscored, 0, "", "as slope through sph"},
 };
 
