@@ -1,6 +1,9 @@
 #include "common/lattice.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include "common/geometry.hpp"
 
@@ -8,9 +11,41 @@ namespace duet {
 
 namespace {
 
-/// Calls visit(centre) for every lattice cell centre of the body that lies inside it.
+/// Rings of the polar lattice (see lattice.hpp): calls visit(centre, volume) for each point
+/// inside the outline.
+template <class Visit>
+void for_each_polar_sample(const Body& body, double dp, Visit&& visit) {
+  const Vec2 o = body.lattice_centre;
+  double first = 0.0;  // inner radius: the nearest vertex, or 0 with the centre inside
+  double last = 0.0;
+  if (!point_in_polygon(o, body.outline)) first = std::numeric_limits<double>::infinity();
+  for (const Vec2& v : body.outline) {
+    first = std::min(first, (v - o).norm());
+    last = std::max(last, (v - o).norm());
+  }
+  const auto rings = static_cast<long>(std::ceil((last - first) / dp - 1e-9));
+  for (long k = 0; k < rings; ++k) {
+    const double r = first + (static_cast<double>(k) + 0.5) * dp;
+    // Points per ring a multiple of 4, so that the axes through the centre (a quarter model's
+    // planes of symmetry) fall midway between two points, half an arc spacing from each.
+    const long n = 4 * std::max(1L, std::lround(0.5 * std::numbers::pi * r / dp));
+    const double step = 2.0 * std::numbers::pi / static_cast<double>(n);
+    const double volume = r * step * dp;  // the ring's annulus shared equally
+    for (long j = 0; j < n; ++j) {
+      const double angle = (static_cast<double>(j) + 0.5) * step;
+      const Vec2 x = o + r * Vec2(std::cos(angle), std::sin(angle));
+      if (point_in_polygon(x, body.outline)) visit(x, volume);
+    }
+  }
+}
+
+/// Calls visit(centre, volume) for every sample of the body that lies inside it.
 template <class Visit>
 void for_each_sample(const Body& body, double dp, Visit&& visit) {
+  if (body.lattice == LatticeKind::polar) {
+    for_each_polar_sample(body, dp, visit);
+    return;
+  }
   Vec2 lo, hi;
   bounding_box(body.outline, lo, hi);
   // Cells per side; the small allowance keeps a side of exactly k dp at k cells despite rounding.
@@ -20,7 +55,7 @@ void for_each_sample(const Body& body, double dp, Visit&& visit) {
     for (long i = 0; i < n_x; ++i) {
       const Vec2 centre =
           lo + dp * Vec2(static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5);
-      if (point_in_polygon(centre, body.outline)) visit(centre);
+      if (point_in_polygon(centre, body.outline)) visit(centre, dp * dp);
     }
   }
 }
@@ -29,7 +64,7 @@ void for_each_sample(const Body& body, double dp, Visit&& visit) {
 
 std::size_t count_body_samples(const Scene& scene, std::size_t body_index) {
   std::size_t count = 0;
-  for_each_sample(scene.bodies[body_index], scene.spacing, [&](const Vec2&) { ++count; });
+  for_each_sample(scene.bodies[body_index], scene.spacing, [&](const Vec2&, double) { ++count; });
   return count;
 }
 
@@ -44,7 +79,11 @@ void sample_body(const Scene& scene, std::size_t body_index, Particles& particle
   const Material& material = scene.materials[static_cast<std::size_t>(body.material_index)];
   const double dp = scene.spacing;
   std::vector<Vec2> centres;
-  for_each_sample(body, dp, [&](const Vec2& centre) { centres.push_back(centre); });
+  std::vector<double> volumes;
+  for_each_sample(body, dp, [&](const Vec2& centre, double volume) {
+    centres.push_back(centre);
+    volumes.push_back(volume);
+  });
   const std::size_t first = particles.size();
   particles.resize(first + centres.size());
   for (std::size_t k = 0; k < centres.size(); ++k) {
@@ -52,8 +91,8 @@ void sample_body(const Scene& scene, std::size_t body_index, Particles& particle
     particles.position[p] = centres[k];
     particles.velocity[p] = body.initial_velocity;
     particles.displacement[p] = Vec2::Zero();
-    particles.volume[p] = dp * dp;
-    particles.mass[p] = material.density * dp * dp;
+    particles.volume[p] = volumes[k];
+    particles.mass[p] = material.density * volumes[k];
     particles.density[p] = material.density;
     particles.stress[p] = Mat3::Zero();
     particles.strain[p] = Mat3::Zero();

@@ -7,7 +7,8 @@
 
 namespace duet {
 
-/// Particles at the cell centres of a square lattice of spacing dp = scene.spacing, one lattice
+/// Particles at the cell centres of a square lattice of spacing dp = scene.spacing (or, for a body
+/// with lattice = polar, on rings; below), one lattice
 /// per body anchored at the body's bounding-box corner (cells [min + i dp, min + (i+1) dp]), kept
 /// when the centre lies inside the body's outline (point_in_polygon; a centre exactly on an edge
 /// goes by its half-open rule). Each particle gets volume dp^2, mass rho dp^2 (kg/m), density rho,
@@ -20,6 +21,16 @@ namespace duet {
 /// (measured from the bounding-box corner) are whole multiples of dp: then each cell is wholly in
 /// or wholly out and its centre says which. Internal variables are left for the driver (they
 /// belong to the models).
+///
+/// Polar lattice (a body around a cavity): rings r_k = r_0 + (k + 1/2) dp about lattice_centre,
+/// r_0 the outline's nearest vertex (0 when the centre lies inside), each ring with n_k points at
+/// angles (j + 1/2) 2 pi / n_k, n_k = 4 round(pi r_k / (2 dp)), each of volume r_k dp 2 pi / n_k
+/// (its share of the ring's annulus). The first ring lies dp/2 off a circular cavity of radius
+/// r_0, as the square lattice's first row lies dp/2 off a straight side, and the axes through the
+/// centre fall midway between points: a quarter annulus gets the area pi/4 (r_1^2 - r_0^2)
+/// exactly (the midpoint rule in r is exact for the annulus) and smooth boundaries on all sides.
+/// A square lattice against a curved cavity leaves its nearest nodes 0 to dp off the wall, so a
+/// moving cavity wall meets them one after another.
 Particles sample_bodies(const Scene& scene);
 
 /// How many particles body `body_index` samples to (the rule of sample_body, nothing stored).

@@ -48,6 +48,12 @@ const RigidBody* rigid_body_named(const Scene& scene, const std::string& name) {
   return nullptr;
 }
 
+double mean_distance(const std::vector<Vec2>& points, const Vec2& centre) {
+  double sum = 0.0;
+  for (const Vec2& p : points) sum += (p - centre).norm();
+  return sum / static_cast<double>(points.size());
+}
+
 }  // namespace
 
 double front_position(const Particles& particles, int body, double spacing, double min_thickness) {
@@ -122,6 +128,12 @@ double evaluate_measure(const Measure& measure, const Scene& scene, const Partic
     }
     case MeasureKind::safety_factor:
       value = scene.strength_reduction.factor;
+      break;
+    case MeasureKind::expansion:
+      if (const Wall* wall = wall_named(scene, measure.target)) {
+        value = mean_distance(wall_points_at(*wall, time), wall->centre) /
+                mean_distance(wall->points, wall->centre);
+      }
       break;
     case MeasureKind::displacement:
       if (const Wall* wall = wall_named(scene, measure.target)) {

@@ -33,6 +33,8 @@ struct Material {
 };
 
 enum class ShapeKind { rectangle, polygon };
+// square: cell centres of a square lattice; polar: rings about a centre (a cavity's soil).
+enum class LatticeKind { square, polar };
 
 /// A body of soil. Both shapes are kept as a counter-clockwise polygon in `outline` (a rectangle
 /// as its four corners), so geometry code needs one case only.
@@ -45,6 +47,8 @@ struct Body {
   Vec2 max = Vec2::Zero();
   std::vector<Vec2> outline;  // counter-clockwise, not repeating the first point
   Vec2 initial_velocity = Vec2::Zero();
+  LatticeKind lattice = LatticeKind::square;
+  Vec2 lattice_centre = Vec2::Zero();  // polar only
 };
 
 // symmetry: a free-slip plane of symmetry, which holds the normal motion both ways (the material
@@ -139,7 +143,8 @@ enum class MeasureKind {
   max_displacement,
   displacement,
   period,
-  safety_factor
+  safety_factor,
+  expansion
 };
 enum class MeasureAt { end, max, series, time };
 
@@ -155,6 +160,8 @@ enum class MeasureAt { end, max, series, time };
 ///  displacement: of a wall or rigid body, integrated from its velocity schedule.
 ///  period: period of the oscillation of the body's centre of mass along component x | y, from
 ///    successive zero crossings of its velocity (elastic bar).
+///  expansion: a radial wall's mean distance from its centre over that at t = 0 (a / a0 of a
+///    cavity).
 ///  safety_factor: the run's strength_reduction.factor; a sweep over it (duet stability --vary
 ///    strength_reduction.factor=...) finds the factor at which the slope fails (Peng 2015 5.3).
 /// at: the value at the end, the maximum over the run, the whole series, or the value at `time`.

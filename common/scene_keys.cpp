@@ -83,6 +83,11 @@ std::vector<SceneKey> make_keys() {
       {"body.<name>", "vertices", "[[x, y], ...]", "m", "(required for polygon)",
        "outline of a simple polygon, either orientation"},
       {"body.<name>", "initial_velocity", "[x, y]", "m/s", "[0.0, 0.0]", "velocity at t = 0"},
+      {"body.<name>", "lattice", "string", "", "\"square\"",
+       "square (cell centres) | polar (rings dp apart about lattice_centre, from the outline's "
+       "nearest vertex: a cavity's soil)"},
+      {"body.<name>", "lattice_centre", "[x, y]", "m", "(required for polar)",
+       "centre of the polar lattice's rings"},
       // --- [wall.<name>] ---
       {"wall.<name>", "points", "[[x, y], ...]", "m", kReq,
        "polyline (closed when the last point repeats the first)"},
@@ -111,7 +116,7 @@ std::vector<SceneKey> make_keys() {
       // --- [measure.<name>] ---
       {"measure.<name>", "kind", "string", "", kReq,
        "front | height | reaction | wall_stress | max_displacement | displacement | period | "
-       "safety_factor"},
+       "safety_factor | expansion (a radial wall's a / a0)"},
       {"measure.<name>", "target", "string", "", "(required but for safety_factor)",
        "the body, wall or rigid body measured"},
       {"measure.<name>", "component", "string", "", "(per kind)",

@@ -226,6 +226,12 @@ Body read_body(const std::string& name, SectionReader& r, const std::vector<Mate
     bounding_box(b.outline, b.min, b.max);
   }
   b.initial_velocity = r.vec2("initial_velocity", Vec2::Zero());
+  if (r.choice("lattice", {"square", "polar"}, "square") == "polar") {
+    b.lattice = LatticeKind::polar;
+    b.lattice_centre = r.vec2("lattice_centre");
+  } else if (r.has("lattice_centre")) {
+    r.fail("lattice_centre", "given with a square lattice", "lattice = \"polar\" to use it");
+  }
   r.finish();
   return b;
 }
@@ -298,7 +304,7 @@ Measure read_measure(const std::string& name, SectionReader& r) {
   m.name = name;
   const std::vector<std::string> kinds = {"front",       "height",           "reaction",
                                           "wall_stress", "max_displacement", "displacement",
-                                          "period",      "safety_factor"};
+                                          "period",      "safety_factor",    "expansion"};
   const std::string kind = r.choice("kind", kinds, std::nullopt);
   m.kind = static_cast<MeasureKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
   if (m.kind != MeasureKind::safety_factor) m.target = r.string("target");

@@ -355,6 +355,8 @@ const char* to_string(MeasureKind k) {
       return "displacement";
     case MeasureKind::period:
       return "period";
+    case MeasureKind::expansion:
+      return "expansion";
     default:
       return "safety_factor";
   }

@@ -174,9 +174,12 @@ class Checker {
   }
 
   void names() const {
-    std::vector<std::string> bodies, boundaries, walls;
+    std::vector<std::string> bodies, boundaries, walls, radial_walls;
     for (const Body& b : scene_.bodies) bodies.push_back(b.name);
-    for (const Wall& w : scene_.walls) walls.push_back(w.name);
+    for (const Wall& w : scene_.walls) {
+      walls.push_back(w.name);
+      if (w.radial) radial_walls.push_back(w.name);
+    }
     boundaries = walls;
     for (const RigidBody& rb : scene_.rigid_bodies) boundaries.push_back(rb.name);
     auto require_name = [&](const std::string& key, const std::string& name,
@@ -200,6 +203,9 @@ class Checker {
           break;
         case MeasureKind::wall_stress:
           require_name(key, m.target, walls, "wall");
+          break;
+        case MeasureKind::expansion:
+          require_name(key, m.target, radial_walls, "wall with radial_velocity");
           break;
         default:
           require_name(key, m.target, boundaries, "wall or rigid body");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <set>
 #include <utility>
@@ -111,6 +112,54 @@ TEST(Lattice, TouchingBodiesShareNoParticleAndKeepTheirIndices) {
   EXPECT_EQ(cells.size(), p.size());
   EXPECT_EQ(std::count(p.body.begin(), p.body.end(), 1), 50);
   EXPECT_EQ(std::count(p.material.begin(), p.material.end(), 0), 100);
+}
+
+/// A quarter annulus r0 <= r <= r1 about the origin, its arcs as `chords` chords each.
+std::vector<Vec2> quarter_annulus(double r0, double r1, int chords) {
+  std::vector<Vec2> outline;
+  for (int k = 0; k <= chords; ++k) {
+    const double a = 0.5 * std::numbers::pi * k / chords;
+    outline.emplace_back(r1 * std::cos(a), r1 * std::sin(a));
+  }
+  for (int k = chords; k >= 0; --k) {
+    const double a = 0.5 * std::numbers::pi * k / chords;
+    outline.emplace_back(r0 * std::cos(a), r0 * std::sin(a));
+  }
+  return outline;
+}
+
+TEST(Lattice, PolarRingsFillAQuarterAnnulusExactlyAndSitHalfASpacingOffEverySide) {
+  // The cavity's soil: 1 m <= r <= 3 m at dp 0.1, arcs as 64 chords (inside the circles by at
+  // most 3 (1 - cos(pi / 256)) = 0.2 mm: every ring point stays inside the outline).
+  const double dp = 0.1;
+  Scene scene = scene_with(dp, 1800.0, {quarter_annulus(1.0, 3.0, 64)});
+  scene.bodies[0].lattice = LatticeKind::polar;
+  const Particles p = sample_bodies(scene);
+  const double area = 0.25 * std::numbers::pi * (9.0 - 1.0);
+  EXPECT_NEAR(sum(p.volume), area, 1e-12 * area);  // the midpoint rule in r is exact here
+  EXPECT_NEAR(sum(p.mass), 1800.0 * area, 1e-12 * 1800.0 * area);
+  std::size_t expected = 0;
+  double nearest_cavity = 1e9, nearest_x_axis = 1e9, nearest_y_axis = 1e9;
+  for (int k = 0; k < 20; ++k) {
+    const double r = 1.0 + (k + 0.5) * dp;
+    const long n = 4 * std::lround(0.5 * std::numbers::pi * r / dp);
+    expected += static_cast<std::size_t>(n / 4);
+    nearest_x_axis = std::min(nearest_x_axis, r * std::sin(std::numbers::pi / n));
+  }
+  ASSERT_EQ(p.size(), expected);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec2 x = p.position[i];
+    nearest_cavity = std::min(nearest_cavity, x.norm() - 1.0);
+    nearest_y_axis = std::min(nearest_y_axis, x.x());
+    // Every point's arc spacing within 10 % of dp: a near-uniform cloud.
+    const double r = x.norm();
+    const double arc = p.volume[i] / dp;
+    EXPECT_NEAR(arc, dp, 0.1 * dp) << "at r = " << r;
+  }
+  EXPECT_NEAR(nearest_cavity, 0.5 * dp, 1e-12);
+  EXPECT_NEAR(nearest_y_axis, nearest_x_axis, 1e-12);  // the quarter is symmetric about y = x
+  EXPECT_GT(nearest_x_axis, 0.45 * dp);
+  EXPECT_LT(nearest_x_axis, 0.5 * dp + 1e-12);
 }
 
 TEST(Lattice, ParticlesStartWithTheBodyInitialVelocityAndNoStress) {

@@ -47,6 +47,27 @@ TEST(FrontPosition, IgnoresColumnsThinnerThanTheMinimumThickness) {
   EXPECT_DOUBLE_EQ(front_position(p, 0, 0.01, 3.0), 0.015);
 }
 
+TEST(EvaluateMeasure, ExpansionIsTheRadialWallsRadiusOverItsFirst) {
+  // A quarter-circle cavity wall of radius 0.5 about (1, 2), its radial speed rising linearly
+  // from 0.1 to 0.3 m/s over 2 s, then held: at t = 4 s its radius is 0.5 + 0.4 + 0.6 = 1.5 m.
+  Scene scene;
+  Wall wall;
+  wall.name = "cavity";
+  wall.radial = true;
+  wall.centre = Vec2(1.0, 2.0);
+  for (int k = 0; k <= 8; ++k) {
+    const double angle = 0.5 * std::numbers::pi * k / 8.0;
+    wall.points.push_back(wall.centre + 0.5 * Vec2(std::cos(angle), std::sin(angle)));
+  }
+  wall.radial_velocity = {{0.0, {0.1, 0.0}}, {2.0, {0.3, 0.0}}};
+  scene.walls.push_back(wall);
+  Measure m;
+  m.kind = MeasureKind::expansion;
+  m.target = "cavity";
+  EXPECT_NEAR(evaluate_measure(m, scene, Particles{}, {}, 0.0), 1.0, 1e-14);
+  EXPECT_NEAR(evaluate_measure(m, scene, Particles{}, {}, 4.0), 3.0, 1e-12);
+}
+
 TEST(MeasureRecorder, MaxTakesTheLargestMagnitudeAndTimeInterpolates) {
   Scene scene;
   scene.spacing = 0.01;
