@@ -63,8 +63,8 @@ void ImplicitSolver::initialise(Particles& particles) {
   }
   discretisation_.initialise(particles.position);
   released_.assign(n, 0);
-  rigid_contact_.assign(n, 0);
-  rigid_contact_initialised_ = false;
+  held_by_.assign(n, 0);
+  held_initialised_ = false;
   previous_u_.assign(n, Vec2::Zero());
   acceleration_.assign(n, Vec2::Zero());
   dynamic_started_ = false;
@@ -80,7 +80,11 @@ std::vector<NodeConstraint> ImplicitSolver::find_constraints(const std::vector<V
                                                              double t1, bool crossed_only) const {
   // The touch of node_contact.hpp, as the explicit solver finds it: within dp/2 of a segment on
   // the soil side (the lattice puts the first row of nodes there), or crossed by less than dp.
+  // A wall keeps a node it held at the last increment's end while within dp: held at exactly
+  // dp/2, a node moved along one chord's normal can leave the next chord's reach by round-off
+  // (the cavity's polar lattice: its first ring lost the wall at every other increment).
   const double reach = 0.5 * setup_.spacing * (1.0 + 1e-6);
+  const double held_reach = setup_.spacing;
   const double depth = setup_.spacing;
   const std::vector<NodeBoundary>& boundaries = discretisation_.boundaries();
   const std::vector<BoundaryGeometry>& geometry = discretisation_.geometry();
@@ -91,11 +95,13 @@ std::vector<NodeConstraint> ImplicitSolver::find_constraints(const std::vector<V
       const NodeBoundary& boundary = boundaries[b];
       if (released_[i] != 0 && boundary.condition != NodeCondition::bonded) continue;
       found.clear();
-      find_contacts(geometry[b], boundary.rigid_body, std::int32_t(i), std::int32_t(b), x[i], reach,
+      const bool held = !boundary.rigid_body && (held_by_[i] & (std::uint64_t{1} << (b % 64)));
+      const double r = held ? held_reach : reach;
+      find_contacts(geometry[b], boundary.rigid_body, std::int32_t(i), std::int32_t(b), x[i], r,
                     depth, found);
       NodeContact vertex;
       if (found.empty() && !boundary.rigid_body &&
-          touch_wall_vertex(geometry[b], std::int32_t(i), std::int32_t(b), x[i], reach, vertex)) {
+          touch_wall_vertex(geometry[b], std::int32_t(i), std::int32_t(b), x[i], r, vertex)) {
         found.push_back(vertex);  // the cavity at dp 0.25 failed at a/a0 1.24 without it
       }
       for (const NodeContact& c : found) {
@@ -145,8 +151,8 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     // set below). By proximity alone, the column of nodes dp/2 beside a footing's side was
     // seized as soon as the footing's base passed them and dragged down with it (at w/B 0.09,
     // dp 0.25, the bearing jumped from 5.14 to 5.58).
-    if (b.rigid_body && rigid_contact_initialised_ &&
-        !(rigid_contact_[std::size_t(c.node)] & (std::uint64_t{1} << (c.boundary % 64)))) {
+    if (b.rigid_body && held_initialised_ &&
+        !(held_by_[std::size_t(c.node)] & (std::uint64_t{1} << (c.boundary % 64)))) {
       continue;
     }
     if (bonded || released_[std::size_t(c.node)] == 0) constraints.push_back(c);
@@ -438,15 +444,15 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     particles.density[i] = particles.mass[i] / particles.volume[i];
   }
   previous_u_ = u;
-  // The rigid bodies' contacts at the increment's end: kept by the next increment while in reach
-  std::fill(rigid_contact_.begin(), rigid_contact_.end(), std::uint64_t{0});
+  // The contacts at the increment's end: a rigid body keeps them while in reach, a wall while
+  // within dp (find_constraints)
+  std::fill(held_by_.begin(), held_by_.end(), std::uint64_t{0});
   for (const NodeConstraint& c : constraints) {
-    if (discretisation_.boundaries()[std::size_t(c.boundary)].rigid_body &&
-        released_[std::size_t(c.node)] == 0) {
-      rigid_contact_[std::size_t(c.node)] |= std::uint64_t{1} << (c.boundary % 64);
+    if (released_[std::size_t(c.node)] == 0) {
+      held_by_[std::size_t(c.node)] |= std::uint64_t{1} << (c.boundary % 64);
     }
   }
-  rigid_contact_initialised_ = true;
+  held_initialised_ = true;
   previous_increment_ = dt;
   return attempt;
 }
@@ -560,12 +566,12 @@ namespace duet::spfem {
 
 void ImplicitSolver::save_state(StateBag& state) const {
   put_integers(state, "solver.released", released_);
-  put_bits(state, "solver.rigid_contact", rigid_contact_);
+  put_bits(state, "solver.rigid_contact", held_by_);  // the key predates walls holding
   put(state, "solver.previous_u", previous_u_);
   put(state, "solver.acceleration", acceleration_);
   put(state, "solver.boundary_force", boundary_force_);
   put(state, "solver.scalars",
-      std::vector<double>{rigid_contact_initialised_ ? 1.0 : 0.0, dynamic_started_ ? 1.0 : 0.0,
+      std::vector<double>{held_initialised_ ? 1.0 : 0.0, dynamic_started_ ? 1.0 : 0.0,
                           previous_increment_, increment_});
   const NewtonCounters& c = counters_;
   put(state, "solver.counters",
@@ -593,12 +599,12 @@ void ImplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
   sized("solver.scalars", 4);
   sized("solver.counters", 12);
   get_integers(state, "solver.released", released_);
-  get_bits(state, "solver.rigid_contact", rigid_contact_);
+  get_bits(state, "solver.rigid_contact", held_by_);
   get(state, "solver.previous_u", previous_u_);
   get(state, "solver.acceleration", acceleration_);
   get(state, "solver.boundary_force", boundary_force_);
   const std::vector<double>& v = entry(state, "solver.scalars");
-  rigid_contact_initialised_ = v[0] != 0.0;
+  held_initialised_ = v[0] != 0.0;
   dynamic_started_ = v[1] != 0.0;
   previous_increment_ = v[2];
   increment_ = v[3];

@@ -107,11 +107,11 @@ class ImplicitSolver {
   double gravity_factor_ = 1.0;  // < 1 while gravity is ramped up (settle)
   bool settling_ = false;
   std::vector<std::uint8_t> released_;  // per node: let go of a tensile contact, until it leaves
-  std::vector<std::uint64_t> rigid_contact_;  // per node: bit b = held by rigid body b (mod 64)
-  bool rigid_contact_initialised_ = false;    // false: the first increment takes every touch
-  std::vector<Vec2> previous_u_;              // the last increment's displacement (predictor)
-  std::vector<Vec2> acceleration_;            // Newmark: a_n per node
-  bool dynamic_started_ = false;              // Newmark: a_0 set
+  std::vector<std::uint64_t> held_by_;  // per node: bit b = held by boundary b (mod 64)
+  bool held_initialised_ = false;       // false: the first increment takes every rigid touch
+  std::vector<Vec2> previous_u_;        // the last increment's displacement (predictor)
+  std::vector<Vec2> acceleration_;      // Newmark: a_n per node
+  bool dynamic_started_ = false;        // Newmark: a_0 set
   double previous_increment_ = 0.0;
   double increment_ = 0.0;  // the current (adaptive) increment size
   std::vector<Vec2> external_force_;

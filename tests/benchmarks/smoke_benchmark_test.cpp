@@ -119,9 +119,11 @@ const std::vector<SmokeCase> kCases = {
      "Peng's sigma_max dummy stress makes energy under the footing (as footing.toml did before "
      "its Bui stress): the soil rises off its base by t = 3.5 s. With Bui's stress it completes "
      "but q/c_u at w/B 0.1 is 18.2 (+253 %) at dp 0.25 and 13.0 at 1/6: not set in the scene"},
-    {"cavity", "sph", 0.5, Outcome::outside, 0.30, "",
-     "p/c_u -25 % at dp 0.5 m (tolerance 10 %); the kinetic-energy check is off here (a radial "
-     "wall's work is not computed)"},
+    {"cavity", "sph", 0.5, Outcome::outside, 0.55, "",
+     "p/c_u -51.5 %, -17.4 %, -0.6 % at a/a0 1.2, 1.5, 2 at dp 0.5 m (tolerance 10 %; the "
+     "closed form of the 20 m ring): the pressure builds late (0.50 at a/a0 1.1 against 2.74), "
+     "three rings of particles across the plastic zone there; the kinetic-energy check is off "
+     "here (a radial wall's work is not computed)"},
     {"slope", "sph", 0.5, Outcome::unscored, 0, "",
      "the factor of safety (1.4) is found by a strength-reduction search (duet srf, "
      "SrfBenchmark); a plain run's factor is the one it was given, so it scores nothing"},
@@ -140,11 +142,11 @@ const std::vector<SmokeCase> kCases = {
      "was sampled as its mean over the sample interval)"},
     {"footing-deep", "espfem", 0.25, Outcome::within, 0, "",
      "q/c_u at w/B 0.1 4.717, -8.3 % (+1.8 % from a single step's reaction)"},
-    {"cavity", "espfem", 0.5, Outcome::outside, 0.35, "",
-     "p/c_u 3.01 at a/a0 2, -28.8 % (tolerance 10 %): at dp 0.5 m the chorded wall's contact "
-     "pressure swings (1.8-6.4 c_u over a/a0 1.95-2.05); the mean over a/a0 1.1, 1.2, 1.5 is "
-     "within 3 % of the closed form (RESULTS.md). It failed (the wall passed through the nodes) "
-     "until the wall's chords faced the soil and its vertices touched nodes"},
+    {"cavity", "espfem", 0.5, Outcome::outside, 0.30, "",
+     "p/c_u -15.0 %, -27.4 %, +1.4 % at a/a0 1.2, 1.5, 2 at dp 0.5 m (tolerance 10 %): the "
+     "wall's contact pressure swings (about +-40 % from sample to sample, RESULTS.md); its mean "
+     "follows the closed form. It failed (the wall passed through the nodes) until the wall's "
+     "chords faced the soil and its vertices touched nodes"},
     {"slope", "espfem", 0.5, Outcome::unscored, 0, "", "as slope through sph"},
 };
 
