@@ -115,6 +115,19 @@ TEST(SceneLoader, OverrideTakesABareWordAsAString) {
   EXPECT_EQ(s.sph.kernel, SphKernel::wendland_c2);
 }
 
+TEST(SceneLoader, APolarLatticeNeedsItsCentreAndASquareOneRefusesIt) {
+  EXPECT_EQ(load_scene_checked_from_string(kScene, "scene.toml").bodies[0].lattice,
+            LatticeKind::square);
+  const Scene polar = load_scene_checked_from_string(
+      kScene, "scene.toml", {"body.column.lattice=polar", "body.column.lattice_centre=[0.1, 0.0]"});
+  EXPECT_EQ(polar.bodies[0].lattice, LatticeKind::polar);
+  EXPECT_EQ(polar.bodies[0].lattice_centre, Vec2(0.1, 0.0));
+  EXPECT_NE(refusal(kScene, {"body.column.lattice=polar"}).find("lattice_centre"),
+            std::string::npos);
+  EXPECT_NE(refusal(kScene, {"body.column.lattice_centre=[0.1, 0.0]"}).find("square lattice"),
+            std::string::npos);
+}
+
 TEST(SceneLoader, OverrideIsTypeCheckedLikeTheFile) {
   EXPECT_EQ(refusal(kScene, {"spacing=fine"}),
             "--set spacing=fine: spacing: wrong type: a string; expected a number");
