@@ -9,6 +9,7 @@
 #include <malloc.h>
 #endif
 
+#include "common/geometry.hpp"
 #include "common/input_error.hpp"
 #include "common/solver.hpp"
 #include "spfem/increment_operator.hpp"
@@ -117,6 +118,30 @@ std::vector<NodeConstraint> ImplicitSolver::find_constraints(const std::vector<V
       }
     }
   }
+  return out;
+}
+
+std::string ImplicitSolver::wall_crossing(const std::vector<Vec2>& x, const std::vector<Vec2>& u,
+                                          double t0, double t1) {
+  std::string out;
+  discretisation_.place_boundaries(t1, settling_);
+  const std::vector<NodeBoundary>& boundaries = discretisation_.boundaries();
+  for (std::size_t b = 0; b < boundaries.size() && out.empty(); ++b) {
+    const NodeBoundary& wall = boundaries[b];
+    if (wall.rigid_body) continue;
+    const Vec2 motion = wall.radial || settling_
+                            ? Vec2(Vec2::Zero())
+                            : boundary_displacement(wall, t0, t1, wall.polyline.front());
+    const std::int64_t i = first_node_crossing(discretisation_.geometry()[b], motion, x, u);
+    if (i >= 0) {
+      const Vec2 to = x[std::size_t(i)] + u[std::size_t(i)];
+      std::ostringstream why;
+      why << "node " << i << " crossed wall '" << wall.name << "' (x = " << to.x()
+          << " m, y = " << to.y() << " m)";
+      out = why.str();
+    }
+  }
+  discretisation_.place_boundaries(t0, settling_);
   return out;
 }
 
@@ -401,6 +426,16 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     if (pass + 1 == o.active_set_passes) break;  // keep the last solution
     ++counters_.active_set_passes;
     constraints = std::move(kept);
+  }
+
+  // A converged increment that carries a node through a wall is not accepted: the step cuts it.
+  // Nodal integration's soft modes let Newton converge to such a state (the cavity at dp 0.25:
+  // a node by the wall moved 0.38 m inwards, through it, in one increment, and the run failed).
+  if (const std::string crossing = wall_crossing(particles.position, attempt.displacement, t0, t1);
+      !crossing.empty()) {
+    attempt.converged = false;
+    attempt.why = crossing;
+    return attempt;
   }
 
   // Commit: the converged state of the increment

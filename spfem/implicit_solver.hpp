@@ -100,6 +100,10 @@ class ImplicitSolver {
   Attempt solve_increment(Particles& particles, double t0, double t1);
   std::vector<NodeConstraint> find_constraints(const std::vector<Vec2>& x, double t0, double t1,
                                                bool crossed_only) const;
+  /// The first node whose path x -> x + u crosses a wall (in the frame of a translating wall),
+  /// described; "" when none does.
+  std::string wall_crossing(const std::vector<Vec2>& x, const std::vector<Vec2>& u, double t0,
+                            double t1);
 
   IspfemSetup setup_;
   NodalDiscretisation discretisation_;

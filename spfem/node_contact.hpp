@@ -76,6 +76,12 @@ void find_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32
                    std::int32_t boundary, const Vec2& x, double reach, double depth,
                    std::vector<NodeContact>& out);
 
+/// The first node whose path over an increment, x -> x + u, seen in the frame of a wall that
+/// translated by `wall_motion` (zero for a radial wall), properly crosses a segment of the wall
+/// at the increment's end (`wall_at_end`): the driver's test (common/run_checks.cpp). -1: none.
+std::int64_t first_node_crossing(const BoundaryGeometry& wall_at_end, const Vec2& wall_motion,
+                                 std::span<const Vec2> x, std::span<const Vec2> u);
+
 /// A wall's convex vertex (the cavity's chords): a node in the wedge beyond it, on the soil side of
 /// both segments that meet there, projects onto neither, so find_contacts (vertices for rigid
 /// bodies only) misses it and the wall walks through it. This touches the vertex within `reach`,

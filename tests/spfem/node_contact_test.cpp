@@ -80,5 +80,22 @@ TEST(NodeContact, ANodeBeyondAConvexVertexOfAWallTouchesIt) {
   EXPECT_FALSE(touch_wall_vertex(g, 0, 0, Vec2(radius + 0.1, -0.05), reach, c));
 }
 
+TEST(NodeContact, APathThroughAMovingWallCrossesItAndANodeFollowingTheWallDoesNot) {
+  // A floor y = 0 that rose by 0.1 m over the increment (at y = 0.1 at its end), soil above.
+  BoundaryGeometry floor;
+  floor.points = {Vec2(0.0, 0.1), Vec2(1.0, 0.1)};
+  const Vec2 rise(0.0, 0.1);
+  // 0: dp/2 above the floor, carried with it; 1: still, its gap closing from 0.12 to 0.02 m;
+  // 2: from 0.3 m down to -0.05 m: through the floor.
+  const std::vector<Vec2> x = {Vec2(0.2, 0.05), Vec2(0.5, 0.12), Vec2(0.8, 0.3)};
+  std::vector<Vec2> u = {rise, Vec2::Zero(), Vec2(0.0, -0.35)};
+  EXPECT_EQ(first_node_crossing(floor, rise, x, u), 2);
+  u[2] = Vec2(0.0, -0.15);  // to 0.15: above the floor's end position
+  EXPECT_EQ(first_node_crossing(floor, rise, x, u), -1);
+  // Past the wall's end: no crossing.
+  u[2] = Vec2(0.5, -0.35);
+  EXPECT_EQ(first_node_crossing(floor, rise, x, u), -1);
+}
+
 }  // namespace
 }  // namespace duet::spfem
