@@ -535,17 +535,37 @@ double ImplicitSolver::step(Particles& particles, double time, double end_time) 
 
 void ImplicitSolver::settle(Particles& particles, int increments) {
   settling_ = true;
-  const int n = std::max(increments, 1);
-  for (int k = 1; k <= n; ++k) {
-    gravity_factor_ = static_cast<double>(k) / n;
-    const double t0 = -1.0 + static_cast<double>(k - 1) / n;
-    const Attempt attempt = solve_increment(particles, t0, t0 + 1.0 / n);
+  // Gravity in `increments` steps of its factor over the pseudo-time [-1, 0], cut and grown as
+  // the load steps are (step()): a strength-reduction trial fails by Newton not converging
+  // within its cuts (Griffiths & Lane 1999), not at the first increment that needs a smaller one.
+  const duet::SpfemImplicitOptions& o = setup_.implicit;
+  const double nominal = 1.0 / std::max(increments, 1);
+  const double floor = nominal * std::ldexp(1.0, -o.max_step_cuts);
+  double factor = 0.0;
+  double size = nominal;
+  int cuts = 0;
+  while (factor < 1.0) {
+    const double next = 1.0 - factor - size < 1e-9 * nominal ? 1.0 : factor + size;
+    gravity_factor_ = next;
+    const Attempt attempt = solve_increment(particles, factor - 1.0, next - 1.0);
     if (!attempt.converged) {
-      settling_ = false;
-      throw NumericalFailure("ispfem gravity loading did not converge at gravity factor " +
-                             std::to_string(gravity_factor_) + ": " + attempt.why);
+      if (!o.adaptive || 0.5 * size < floor * (1.0 - 1e-9)) {
+        settling_ = false;
+        std::ostringstream why;
+        why << "ispfem gravity loading did not converge at gravity factor " << next << " (from "
+            << factor << ", after " << cuts << " cuts): " << attempt.why
+            << "; last relative residuals: " << format_residuals(attempt.residuals);
+        throw NumericalFailure(why.str());
+      }
+      size *= 0.5;
+      ++cuts;
+      ++counters_.cuts;
+      continue;
     }
     counters_.residual_history.push_back(attempt.residuals);
+    const int iterations = static_cast<int>(attempt.residuals.size()) - 1;
+    if (iterations <= o.easy_iterations) size = std::min(nominal, 1.5 * size);
+    factor = next;
   }
   gravity_factor_ = 1.0;
   settling_ = false;
