@@ -5,7 +5,8 @@ Usage: stability.py stability.csv stability.png [title] [key=unit ...]
 A completed cell is coloured by its largest scored error (a colour bar; "stable" in green when the
 scene scores nothing); a failed or interrupted cell is red and names its reason: in the cell,
 wrapped, when short, else as [k] with the reasons listed under the map. One varied key: a row of
-cells; two or more: the first two keys span the grid (further keys are written in the cells).
+cells; two or more: the first two keys span the grid, and each cell is split into side-by-side
+sub-cells, one per combination of the further keys (named in each sub-cell).
 Axis labels carry each key's unit when given.
 """
 import csv
@@ -44,6 +45,8 @@ def main():
     y_key = keys[1] if len(keys) > 1 else None
     xs = list(dict.fromkeys(r[x_key] for r in rows))
     ys = list(dict.fromkeys(r[y_key] for r in rows)) if y_key else [""]
+    subs = list(dict.fromkeys(tuple(r[k] for k in keys[2:]) for r in rows))
+    n_sub = len(subs)
 
     errors = [number(r["max_rel_error"]) for r in rows if r["status"] == "completed"]
     errors = [e for e in errors if e is not None]
@@ -55,12 +58,13 @@ def main():
             else Normalize(low, max(high, low + 1e-12))
 
     reasons = []  # long reasons, listed under the map
-    width = 1.9 * len(xs) + 2.6
+    width = 1.9 * len(xs) * n_sub + 2.6
     fig, ax = plt.subplots(figsize=(width, 1.15 * len(ys) + 2.2))
     for r in rows:
-        i = xs.index(r[x_key])
+        # the cell's left edge: its column, then its sub-column (further keys)
+        i = xs.index(r[x_key]) + subs.index(tuple(r[k] for k in keys[2:])) / n_sub
         j = ys.index(r[y_key]) if y_key else 0
-        extra = [f"{k} = {r[k]}" for k in keys[2:]]
+        extra = [f"{k.split('.')[-1]} = {r[k]}" for k in keys[2:]]
         if r["status"] == "completed":
             error = number(r["max_rel_error"])
             if norm is not None and error is not None:
@@ -79,9 +83,12 @@ def main():
             else:
                 reasons.append(f"{r['status']}{when}: {reason}")
                 text = f"{r['status']}{when}\n[{len(reasons)}]"
-        ax.add_patch(plt.Rectangle((i, j), 1, 1, facecolor=colour, edgecolor="white", lw=2))
-        ax.text(i + 0.5, j + 0.5, "\n".join([text] + extra), ha="center", va="center",
+        ax.add_patch(plt.Rectangle((i, j), 1 / n_sub, 1, facecolor=colour, edgecolor="white",
+                                   lw=0.8 if n_sub > 1 else 2))
+        ax.text(i + 0.5 / n_sub, j + 0.5, "\n".join([text] + extra), ha="center", va="center",
                 fontsize=7, color=ink)
+    for i in range(1, len(xs)):  # the main columns' borders over the sub-cells'
+        ax.axvline(i, color="white", lw=3)
     ax.set_xlim(0, len(xs))
     ax.set_ylim(0, len(ys))
 

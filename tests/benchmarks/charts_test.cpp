@@ -77,6 +77,19 @@ TEST_F(Charts, StabilityGrowsToListLongReasons) {
   EXPECT_LT(size.height, 640u);
 }
 
+TEST_F(Charts, StabilitySplitsACellPerFurtherKey) {
+  // Three varied keys: 2 x 1 cells, each split in two by the third (once they were drawn over each
+  // other, their labels overprinted)
+  const fs::path png = out_ / "stability-three.png";
+  EXPECT_EQ(draw("stability.py",
+                 {kFixtures + "stability-three-keys.csv", png.string(), "collapse (espfem)"}),
+            "");
+  const PngSize size = png_size(png);
+  // (1.9 x 2 columns x 2 sub-cells + 2.6) x (1.15 + 2.2) in at 120 dpi
+  EXPECT_NEAR(size.width, 1224, 1);
+  EXPECT_NEAR(size.height, 402, 1);
+}
+
 TEST_F(Charts, SummaryGridOfBenchmarks) {
   const fs::path png = out_ / "summary.png";
   EXPECT_EQ(draw("summary.py", {kFixtures + "summary.csv", png.string(), "0.05"}), "");
