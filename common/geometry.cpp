@@ -104,6 +104,37 @@ bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) 
          ((d3 > eps && d4 < -eps) || (d3 < -eps && d4 > eps));
 }
 
+bool path_crosses_polyline(const Vec2& a, const Vec2& b, std::span<const Vec2> points) {
+  for (std::size_t s = 0; s + 1 < points.size(); ++s) {
+    if (segments_cross(a, b, points[s], points[s + 1])) return true;
+  }
+  const Vec2 ab = b - a;
+  const double length2 = ab.squaredNorm();
+  if (!(length2 > 0.0)) return false;
+  for (std::size_t v = 1; v + 1 < points.size(); ++v) {
+    const Vec2& p = points[v];
+    const double scale = std::max(length2, (points[v + 1] - points[v - 1]).squaredNorm());
+    // p on the path, strictly between its ends
+    if (std::abs(cross(ab, p - a)) > 1e-12 * scale) continue;
+    const double u = (p - a).dot(ab) / length2;
+    if (!(u > 1e-12 && u < 1.0 - 1e-12)) continue;
+    // The ends on opposite sides of the polyline at the vertex: left of it means left of both
+    // segments' lines where it turns left, of either where it turns right.
+    const Vec2 d1 = p - points[v - 1];
+    const Vec2 d2 = points[v + 1] - p;
+    const bool left_turn = cross(d1, d2) >= 0.0;
+    const auto side = [&](const Vec2& x) {  // +1 left, -1 right, 0 on a line
+      const double c1 = cross(d1, x - points[v - 1]);
+      const double c2 = cross(d2, x - p);
+      const bool left = left_turn ? (c1 > 0.0 && c2 > 0.0) : (c1 > 0.0 || c2 > 0.0);
+      const bool right = left_turn ? (c1 < 0.0 || c2 < 0.0) : (c1 < 0.0 && c2 < 0.0);
+      return left && !right ? 1 : (right && !left ? -1 : 0);
+    };
+    if (side(a) * side(b) < 0) return true;
+  }
+  return false;
+}
+
 bool polygons_overlap(std::span<const Vec2> a, std::span<const Vec2> b) {
   for (std::size_t i = 0; i < a.size(); ++i) {
     for (std::size_t j = 0; j < b.size(); ++j) {

@@ -35,6 +35,12 @@ double polygon_boundary_distance(const Vec2& point, std::span<const Vec2> polygo
 /// at an end or running along each other does not count).
 bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d);
 
+/// True when the path [a, b] crosses the open polyline `points`: it crosses a segment at a point
+/// interior to both, or it passes through an interior vertex with its ends on opposite sides of
+/// the polyline there (a particle sliding through a chorded wall exactly at a vertex, which
+/// segments_cross counts for neither segment).
+bool path_crosses_polyline(const Vec2& a, const Vec2& b, std::span<const Vec2> points);
+
 /// True when the interiors of two simple polygons overlap with positive area. Polygons that only
 /// touch along edges or at vertices do not overlap. Test: some pair of edges crosses properly, or
 /// a vertex of one, or a point just inside an edge midpoint of one, lies strictly inside the

@@ -82,12 +82,9 @@ std::optional<StateProblem> StateChecks::check(const Particles& particles,
           (from.array().min(to.array()) > hi.array()).any()) {
         continue;
       }
-      for (std::size_t s = 0; s + 1 < points.size(); ++s) {
-        if (segments_cross(from, to, points[s], points[s + 1])) {
-          return StateProblem{
-              describe(("particle crossed wall '" + wall.name + "'").c_str(), i, to),
-              static_cast<long>(i), to};
-        }
+      if (path_crosses_polyline(from, to, points)) {
+        return StateProblem{describe(("particle crossed wall '" + wall.name + "'").c_str(), i, to),
+                            static_cast<long>(i), to};
       }
     }
   }

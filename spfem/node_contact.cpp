@@ -128,12 +128,9 @@ void find_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32
 
 std::int64_t first_node_crossing(const BoundaryGeometry& wall_at_end, const Vec2& wall_motion,
                                  std::span<const Vec2> x, std::span<const Vec2> u) {
-  const std::vector<Vec2>& p = wall_at_end.points;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    const Vec2 from = x[i] + wall_motion;
-    const Vec2 to = x[i] + u[i];
-    for (std::size_t s = 0; s + 1 < p.size(); ++s) {
-      if (segments_cross(from, to, p[s], p[s + 1])) return static_cast<std::int64_t>(i);
+    if (path_crosses_polyline(x[i] + wall_motion, x[i] + u[i], wall_at_end.points)) {
+      return static_cast<std::int64_t>(i);
     }
   }
   return -1;

@@ -74,6 +74,23 @@ TEST(Geometry, CrossingContainedAndCoincidentPolygonsOverlap) {
   EXPECT_FALSE(polygons_overlap(l_shape(), square(1, 1, 1)));       // fills the notch
 }
 
+TEST(Geometry, APathThroughAVertexOfAPolylineCrossesItAndOneTouchingItDoesNot) {
+  // Two chords of a cavity meeting at (1, 1) on the diagonal, soil outside (x + y > 2).
+  const std::vector<Vec2> wall = {Vec2(1.2, 0.7), Vec2(1.0, 1.0), Vec2(0.7, 1.2)};
+  // Along the diagonal, through the vertex: segments_cross counts it for neither chord.
+  const Vec2 from(1.1, 1.1), to(0.95, 0.95);
+  EXPECT_FALSE(segments_cross(from, to, wall[0], wall[1]));
+  EXPECT_FALSE(segments_cross(from, to, wall[1], wall[2]));
+  EXPECT_TRUE(path_crosses_polyline(from, to, wall));
+  EXPECT_TRUE(path_crosses_polyline(to, from, wall));  // either way
+  // Ending on the vertex, or grazing it and staying outside: no crossing.
+  EXPECT_FALSE(path_crosses_polyline(from, Vec2(1.0, 1.0), wall));
+  EXPECT_FALSE(path_crosses_polyline(Vec2(1.3, 0.9), Vec2(0.9, 1.3), wall));
+  // Through a chord's interior, as before.
+  EXPECT_TRUE(path_crosses_polyline(Vec2(1.2, 0.95), Vec2(1.0, 0.85), wall));
+  EXPECT_FALSE(path_crosses_polyline(Vec2(1.3, 1.3), Vec2(1.2, 1.2), wall));
+}
+
 TEST(Geometry, BowTieIsNotASimplePolygon) {
   EXPECT_FALSE(is_simple_polygon(std::vector<Vec2>{{0, 0}, {1, 1}, {1, 0}, {0, 1}}));
   EXPECT_TRUE(is_simple_polygon(l_shape()));
