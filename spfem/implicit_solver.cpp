@@ -29,6 +29,23 @@ std::string format_residuals(const std::vector<double>& r) {
   return out.str();
 }
 
+// The increment rules shared by the load steps (step) and the gravity loading (settle). A failed
+// increment may be halved while half of it stays above the floor nominal / 2^max_step_cuts:
+// without the floor the halvings of successive increments compound (each grows back only after
+// easy convergence) and a run can creep on with vanishing increments that converge trivially
+// while its time stands still.
+bool may_halve(const duet::SpfemImplicitOptions& o, double size, double nominal) {
+  return o.adaptive && 0.5 * size >= nominal * std::ldexp(1.0, -o.max_step_cuts) * (1.0 - 1e-9);
+}
+
+// The next increment after one of `size` converged in `iterations`: grown by 1.5 after easy
+// convergence, never beyond nominal; the nominal one when not adaptive.
+double next_increment(const duet::SpfemImplicitOptions& o, double size, double nominal,
+                      int iterations) {
+  if (!o.adaptive) return nominal;
+  return iterations <= o.easy_iterations ? std::min(nominal, 1.5 * size) : size;
+}
+
 }  // namespace
 
 ImplicitSolver::ImplicitSolver(IspfemSetup setup)
@@ -511,15 +528,10 @@ double ImplicitSolver::step(Particles& particles, double time, double end_time) 
       counters_.increment_min =
           counters_.increments == 1 ? dt : std::min(counters_.increment_min, dt);
       counters_.increment_max = std::max(counters_.increment_max, dt);
-      increment_ = o.adaptive && iterations <= o.easy_iterations ? std::min(nominal, 1.5 * dt) : dt;
-      if (!o.adaptive) increment_ = nominal;
+      increment_ = next_increment(o, dt, nominal, iterations);
       return dt;
     }
-    // The floor: nominal / 2^max_step_cuts. Without it the halvings of successive increments
-    // compound (each grows back only after easy convergence) and a run can creep on with
-    // vanishing increments that converge trivially while its time stands still.
-    const double floor = nominal * std::ldexp(1.0, -o.max_step_cuts);
-    if (!o.adaptive || 0.5 * dt < floor * (1.0 - 1e-9)) {
+    if (!may_halve(o, dt, nominal)) {
       std::ostringstream why;
       why << "Newton did not converge at t = " << time << " s over the increment " << dt
           << " s (increment " << counters_.increments + 1 << ", after " << cuts
@@ -540,7 +552,6 @@ void ImplicitSolver::settle(Particles& particles, int increments) {
   // within its cuts (Griffiths & Lane 1999), not at the first increment that needs a smaller one.
   const duet::SpfemImplicitOptions& o = setup_.implicit;
   const double nominal = 1.0 / std::max(increments, 1);
-  const double floor = nominal * std::ldexp(1.0, -o.max_step_cuts);
   double factor = 0.0;
   double size = nominal;
   int cuts = 0;
@@ -549,7 +560,7 @@ void ImplicitSolver::settle(Particles& particles, int increments) {
     gravity_factor_ = next;
     const Attempt attempt = solve_increment(particles, factor - 1.0, next - 1.0);
     if (!attempt.converged) {
-      if (!o.adaptive || 0.5 * size < floor * (1.0 - 1e-9)) {
+      if (!may_halve(o, size, nominal)) {
         settling_ = false;
         std::ostringstream why;
         why << "ispfem gravity loading did not converge at gravity factor " << next << " (from "
@@ -563,8 +574,7 @@ void ImplicitSolver::settle(Particles& particles, int increments) {
       continue;
     }
     counters_.residual_history.push_back(attempt.residuals);
-    const int iterations = static_cast<int>(attempt.residuals.size()) - 1;
-    if (iterations <= o.easy_iterations) size = std::min(nominal, 1.5 * size);
+    size = next_increment(o, size, nominal, static_cast<int>(attempt.residuals.size()) - 1);
     factor = next;
   }
   gravity_factor_ = 1.0;

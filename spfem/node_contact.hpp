@@ -77,8 +77,9 @@ void find_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32
                    std::vector<NodeContact>& out);
 
 /// The first node whose path over an increment, x -> x + u, seen in the frame of a wall that
-/// translated by `wall_motion` (zero for a radial wall), properly crosses a segment of the wall
-/// at the increment's end (`wall_at_end`): the driver's test (common/run_checks.cpp). -1: none.
+/// translated by `wall_motion` (zero for a radial wall), crosses the wall at the increment's end
+/// (`wall_at_end`; path_crosses_polyline, as the driver's check in common/run_checks.cpp). -1:
+/// none.
 std::int64_t first_node_crossing(const BoundaryGeometry& wall_at_end, const Vec2& wall_motion,
                                  std::span<const Vec2> x, std::span<const Vec2> u);
 

@@ -17,13 +17,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// `duet srf` on slope.toml through `method` with the further `options`, into a fresh `out`.
+test::DuetResult srf_on_the_slope(const std::string& method, const std::string& options,
+                                  const fs::path& out) {
+  fs::remove_all(out);
+  return test::run_duet("srf '" + std::string(DUET_SOURCE_DIR) +
+                        "/benchmarks/scenes/slope.toml' --method " + method + " " + options +
+                        " --out '" + out.string() + "'");
+}
+
 TEST(SrfBenchmark, CoarseSlopeThroughSphBracketsItsFactorOfSafety) {
   const fs::path out = fs::temp_directory_path() / "duet-srf-slope-sph";
-  fs::remove_all(out);
-  const test::DuetResult r = test::run_duet(
-      "srf '" + std::string(DUET_SOURCE_DIR) +
-      "/benchmarks/scenes/slope.toml' --method sph --spacing 1.0 --width 0.1 --out '" +
-      out.string() + "'");
+  const test::DuetResult r = srf_on_the_slope("sph", "--spacing 1.0 --width 0.1", out);
   ASSERT_EQ(r.status, 0) << r.output;
   const Json result = read_json((out / "srf.json").string());
   EXPECT_EQ(result.find("outcome")->string(), "bracketed");
@@ -49,11 +54,7 @@ TEST(SrfBenchmark, SlopeThroughIspfemFailsByNewtonWithinItsCutsNearTheReference)
   // [1.4625, 1.5]; at dp 0.25 [1.35, 1.3875] (88 s; benchmarks/RESULTS.md). Without the cuts
   // the first trial needing a smaller gravity increment failed: [1.425, 1.4625] at dp 0.5.
   const fs::path out = fs::temp_directory_path() / "duet-srf-slope-ispfem";
-  fs::remove_all(out);
-  const test::DuetResult r = test::run_duet(
-      "srf '" + std::string(DUET_SOURCE_DIR) +
-      "/benchmarks/scenes/slope.toml' --method ispfem --spacing 0.5 --width 0.05 --out '" +
-      out.string() + "'");
+  const test::DuetResult r = srf_on_the_slope("ispfem", "--spacing 0.5 --width 0.05", out);
   ASSERT_EQ(r.status, 0) << r.output;
   const Json result = read_json((out / "srf.json").string());
   EXPECT_EQ(result.find("outcome")->string(), "bracketed");
