@@ -27,6 +27,7 @@
 #include "common/reaction_mean.hpp"
 #include "common/run_checks.hpp"
 #include "common/state_bag.hpp"
+#include "common/strength_reduction.hpp"
 
 namespace duet {
 
@@ -332,6 +333,10 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   metrics["status"] = status;
   metrics["failure"] = failure ? failure_json(*failure) : Json();
   metrics["end_time"] = time;
+  // Peng's order: the strength falls during the run; the factor it had reached at the end
+  if (scene.strength_reduction.factor != 1.0) {
+    metrics["strength_factor_at_end"] = strength_factor_at(scene, time);
+  }
   if (interrupted_by) metrics["signal"] = static_cast<long>(interrupted_by);
   // Whether `duet run --resume` can continue this run from its frames, and if not why.
   metrics["resumable"] = keeps_state;

@@ -17,6 +17,7 @@
 #include "common/input_error.hpp"
 #include "common/interrupt.hpp"
 #include "common/json.hpp"
+#include "common/strength_reduction.hpp"
 
 namespace duet {
 
@@ -66,6 +67,11 @@ void write_reports(const std::string& out, const SrfArgs& args, const Scene& sce
   j["method"] = args.method;
   j["spacing"] = scene.spacing;
   j["rule"] = scene.strength_reduction.rule;
+  // After gravity loading at full strength (Peng's order) or from the start; over `ramp` s
+  j["stage"] = scene.initial_stress.kind == InitialStressKind::gravity_loading
+                   ? scene.strength_reduction.stage
+                   : std::string("no gravity loading");
+  j["ramp"] = scene.strength_reduction.ramp;
   j["outcome"] = result.outcome;
   j["last_stable"] = result.last_stable;
   j["first_failed"] = result.first_failed;
@@ -86,6 +92,12 @@ void write_reports(const std::string& out, const SrfArgs& args, const Scene& sce
   md << "Factor of safety: between " << factor_text(result.last_stable) << " (last stable) and "
      << factor_text(result.first_failed) << " (first failed); " << result.outcome << ", "
      << result.trials.size() << " trials, " << format_number(std::round(wall)) << " s.\n\n";
+  if (scene.initial_stress.kind == InitialStressKind::gravity_loading) {
+    md << (scene.strength_reduction.stage == "after-loading"
+               ? "Gravity loading at full strength, then the strength reduced over the first " +
+                     format_number(scene.strength_reduction.ramp) + " s (Peng 2015 5.3).\n\n"
+               : std::string("Gravity loading at the reduced strength.\n\n"));
+  }
   md << "| factor | verdict | reason | wall (s) |\n|---|---|---|---|\n";
   for (const SrfTrial& t : result.trials) {
     md << "| " << factor_text(t.factor) << " | " << (t.stable ? "stable" : "failed") << " | "
@@ -151,9 +163,15 @@ void add_srf_command(CLI::App& app, int& exit_code) {
         const std::string h5 = options.out_dir + "/run.h5";
         t = settle_verdict(read_series(h5, "time"), read_series(h5, measure), settle);
       } else {
-        char text[64];
-        std::snprintf(text, sizeof text, "run %s at t = %.4g s: ", run.status.c_str(),
-                      run.failure_time);
+        char text[96];
+        if (strength_changes_in_run(trial_scene)) {
+          std::snprintf(text, sizeof text,
+                        "run %s at t = %.4g s (strength factor %.4g): ", run.status.c_str(),
+                        run.failure_time, strength_factor_at(trial_scene, run.failure_time));
+        } else {
+          std::snprintf(text, sizeof text, "run %s at t = %.4g s: ", run.status.c_str(),
+                        run.failure_time);
+        }
         t.stable = false;
         t.reason = text + run.failure_reason;
       }

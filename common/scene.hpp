@@ -30,6 +30,9 @@ struct Material {
   std::map<std::string, ParameterValue> parameters;
   // The parameters as the model read them (defaults and derived values included).
   std::map<std::string, ParameterValue> resolved;
+  // `parameters` before the strength reduction (equal to them at factor 1): what gravity loading
+  // uses under strength_reduction.stage = "after-loading" (common/strength_reduction.hpp).
+  std::map<std::string, ParameterValue> full_strength;
 };
 
 enum class ShapeKind { rectangle, polygon };
@@ -107,9 +110,13 @@ struct Load {
 /// Strength reduction (Peng 2015 eqs 39-40): every material's `c` and friction angle `phi` are
 /// reduced by `factor` before its model is built. rule "angle": phi_f = phi / f (Peng eq 40);
 /// rule "tangent": tan phi_f = tan phi / f (Griffiths & Lane 1999). c_f = c / f (Peng eq 39).
+/// stage, with gravity loading: "after-loading" settles at full strength and reduces it over the
+/// run's first `ramp` seconds (Peng 2015 5.3); "throughout" settles at the reduced strength.
 struct StrengthReduction {
   double factor = 1.0;
   std::string rule = "tangent";
+  std::string stage = "after-loading";
+  double ramp = 0.0;  // s
 };
 
 struct Time {

@@ -61,6 +61,11 @@ std::vector<SceneKey> make_keys() {
       {"strength_reduction", "factor", "number", "-", "1.0", "f: c / f and phi reduced by f"},
       {"strength_reduction", "rule", "string", "", "\"tangent\"",
        "tangent: tan phi / f (Griffiths & Lane 1999) | angle: phi / f (Peng 2015 eq 40)"},
+      {"strength_reduction", "stage", "string", "", "\"after-loading\"",
+       "after-loading: gravity loading at full strength, then reduced (Peng 2015 5.3) | "
+       "throughout: reduced from the first gravity increment"},
+      {"strength_reduction", "ramp", "number", "s", "0",
+       "after-loading: the strength falls linearly to c / f over this much run time (0: at once)"},
       // --- [checks] ---
       {"checks", "kinetic_energy_factor", "number", "-", "2.0",
        "fail when kinetic energy > this x the energy put in (0: off)"},

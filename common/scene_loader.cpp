@@ -14,6 +14,7 @@
 #include "common/scene_keys.hpp"
 #include "common/scene_schema.hpp"
 #include "common/scene_validation.hpp"
+#include "common/strength_reduction.hpp"
 #include "common/suggest.hpp"
 
 namespace duet {
@@ -114,22 +115,14 @@ void apply_override(toml::table& root, const std::string& text, SceneSource& sou
   source.overrides[key] = value_text;
 }
 
-/// Peng 2015 eqs 39-40: c_f = c / f, phi_f = phi / f ("angle"); or tan phi_f = tan phi / f
-/// ("tangent", Griffiths & Lane 1999).
-void reduce_strength(Material& m, const StrengthReduction& reduction, SectionReader& r) {
+/// Peng 2015 eqs 39-40 at the scene's factor (common/strength_reduction.hpp); the full-strength
+/// parameters kept for gravity loading.
+void reduce_material_strength(Material& m, const StrengthReduction& reduction, SectionReader& r) {
+  m.full_strength = m.parameters;
   if (reduction.factor == 1.0) return;
-  auto* phi = m.parameters.count("phi") ? std::get_if<double>(&m.parameters["phi"]) : nullptr;
-  auto* c = m.parameters.count("c") ? std::get_if<double>(&m.parameters["c"]) : nullptr;
-  if (!phi && !c) {
+  if (!duet::reduce_strength(m.parameters, reduction.factor, reduction.rule)) {
     r.fail("", "strength_reduction.factor is set but this material has no phi or c",
            "materials given with phi (deg) and/or c (Pa)");
-  }
-  const double f = reduction.factor;
-  if (c) *c /= f;  // Peng 2015 eq 39
-  if (phi) {
-    const double deg = std::numbers::pi / 180.0;
-    *phi = reduction.rule == "angle" ? *phi / f  // Peng 2015 eq 40
-                                     : std::atan(std::tan(*phi * deg) / f) / deg;
   }
 }
 
@@ -156,7 +149,7 @@ Material read_material(const std::string& name, const toml::node& node,
       r.fail(key, "wrong type: " + describe_type(v), "a number or a string (a model parameter)");
     }
   }
-  reduce_strength(m, reduction, r);
+  reduce_material_strength(m, reduction, r);
   if (!check) {
     m.resolved = m.parameters;
   } else {
@@ -173,7 +166,11 @@ Material read_material(const std::string& name, const toml::node& node,
       throw InputError(r.where(at) + ": " + message);
     }
   }
-  for (const auto& [key, value] : m.resolved) {
+  // The resolved scene is loaded again by `duet run --resume`, which reduces the strength again:
+  // a reduced material keeps the parameters as given (its derived values, a Drucker-Prager
+  // tension cut-off or hypoplastic c1..c4, follow the reduced c and phi when its model is built).
+  const bool reduced = reduction.factor != 1.0;
+  for (const auto& [key, value] : reduced ? m.full_strength : m.resolved) {
     if (const double* d = std::get_if<double>(&value)) {
       resolved.insert_or_assign(key, *d);
     } else {
@@ -523,6 +520,20 @@ Scene read_scene(const toml::table& root, const SceneSource& source, const Mater
   scene.strength_reduction.factor =
       reduction.number("factor", 1.0, positive("a strength reduction factor (-)"));
   scene.strength_reduction.rule = reduction.choice("rule", {"tangent", "angle"}, "tangent");
+  scene.strength_reduction.stage =
+      reduction.choice("stage", {"after-loading", "throughout"}, "after-loading");
+  scene.strength_reduction.ramp =
+      reduction.number("ramp", 0.0, non_negative("a time (s) over which the strength falls"));
+  if (scene.strength_reduction.ramp > 0.0) {
+    if (scene.strength_reduction.stage != "after-loading") {
+      reduction.fail("ramp", "a ramp with stage = \"throughout\" (nothing changes in the run)",
+                     "stage = \"after-loading\", or no ramp");
+    }
+    if (scene.strength_reduction.ramp >= scene.time.end_time) {
+      reduction.fail("ramp", "the strength would not reach c / f before time.end_time",
+                     "a ramp shorter than the run (s)");
+    }
+  }
   reduction.finish();
 
   SectionReader checks = section("checks", kCheckKeys);

@@ -106,6 +106,18 @@ void ExplicitSolver::initialise(Particles& particles) {
   }
 }
 
+void ExplicitSolver::use_models(std::vector<std::unique_ptr<constitutive::Model>> models) {
+  if (models.size() != setup_.models.size()) {
+    throw std::invalid_argument("espfem: use_models with another number of materials");
+  }
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    if (models[m]->internal_variables().size() != n_internal_[m]) {
+      throw std::invalid_argument("espfem: use_models with other internal variables");
+    }
+  }
+  setup_.models = std::move(models);
+}
+
 double ExplicitSolver::time_step(const Particles& particles) {
   const double dt = setup_.options.time_step == SpfemTimeStep::cell_size
                         ? cell_size_time_step(particles)

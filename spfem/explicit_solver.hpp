@@ -62,6 +62,10 @@ class ExplicitSolver {
   /// (1/s) and walls held still, then zeroes velocities, displacements and strains.
   void settle(Particles& particles, double duration, double damping);
 
+  /// Replaces the material models by models of the same kinds and internal variables (a
+  /// strength reduced during the run: common/strength_reduction.hpp); the next step uses them.
+  void use_models(std::vector<std::unique_ptr<constitutive::Model>> models);
+
   /// External force on each node (N/m), e.g. a scene load; zero unless set. Read every step.
   std::vector<Vec2>& external_force() { return external_force_; }
 

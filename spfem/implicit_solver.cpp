@@ -223,7 +223,9 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     wall_increment[2 * e] = boundary_displacement(b, t0, t1, edge.a_wall);
     wall_increment[2 * e + 1] = boundary_displacement(b, t0, t1, edge.b_wall);
   }
-  IncrementOperator op(discretisation_, setup_.models, particles, wall_increment, &timers_);
+  const Models* models_now = models_at_ ? models_at_(t1) : nullptr;
+  IncrementOperator op(discretisation_, models_now ? *models_now : setup_.models, particles,
+                       wall_increment, &timers_);
   const double scale_dt = previous_increment_ > 0.0 ? (t1 - t0) / previous_increment_ : 0.0;
   // Newmark's average acceleration (beta 1/4, gamma 1/2): a_n+1 = c (u - dt v_n) - a_n with
   // c = 1 / (beta dt^2); the inertia M a_n+1 joins F_int and c M the tangent's diagonal
@@ -535,7 +537,8 @@ double ImplicitSolver::step(Particles& particles, double time, double end_time) 
       std::ostringstream why;
       why << "Newton did not converge at t = " << time << " s over the increment " << dt
           << " s (increment " << counters_.increments + 1 << ", after " << cuts
-          << " cuts): " << attempt.why
+          << " cuts, at the smallest increment allowed: nominal / 2^" << o.max_step_cuts
+          << "): " << attempt.why
           << "; last relative residuals: " << format_residuals(attempt.residuals);
       throw NumericalFailure(why.str());
     }
@@ -564,7 +567,9 @@ void ImplicitSolver::settle(Particles& particles, int increments) {
         settling_ = false;
         std::ostringstream why;
         why << "ispfem gravity loading did not converge at gravity factor " << next << " (from "
-            << factor << ", after " << cuts << " cuts): " << attempt.why
+            << factor << ", after " << cuts
+            << " cuts, at the smallest increment allowed: nominal / 2^" << o.max_step_cuts
+            << "): " << attempt.why
             << "; last relative residuals: " << format_residuals(attempt.residuals);
         throw NumericalFailure(why.str());
       }

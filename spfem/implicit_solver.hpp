@@ -67,6 +67,12 @@ class ImplicitSolver {
   using LoadFunction = std::function<void(double time, std::vector<Vec2>& force)>;
   void set_loads(LoadFunction loads) { loads_ = std::move(loads); }
 
+  /// The material models in effect at a time (a strength reduced during the run:
+  /// common/strength_reduction.hpp), asked for each increment's end time; null: the setup's.
+  using Models = std::vector<std::unique_ptr<constitutive::Model>>;
+  using ModelsFunction = std::function<const Models*(double time)>;
+  void set_models(ModelsFunction models) { models_at_ = std::move(models); }
+
   /// One converged increment from `time`, no further than `end_time`; returns its size (s).
   /// Throws NumericalFailure when Newton fails after max_step_cuts halvings.
   double step(Particles& particles, double time, double end_time);
@@ -108,6 +114,7 @@ class ImplicitSolver {
   IspfemSetup setup_;
   NodalDiscretisation discretisation_;
   LoadFunction loads_;
+  ModelsFunction models_at_;
   double gravity_factor_ = 1.0;  // < 1 while gravity is ramped up (settle)
   bool settling_ = false;
   std::vector<std::uint8_t> released_;  // per node: let go of a tensile contact, until it leaves

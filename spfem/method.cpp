@@ -7,7 +7,8 @@
 #include "common/input_error.hpp"
 #include "common/scene.hpp"
 #include "common/scene_loads.hpp"
-#include "constitutive/registry.hpp"
+#include "common/strength_reduction.hpp"
+#include "constitutive/scene_models.hpp"
 #include "spfem/explicit_solver.hpp"
 #include "spfem/implicit_solver.hpp"
 
@@ -34,9 +35,7 @@ Setup make_setup(const Scene& scene) {
   setup.options = scene.spfem;
   setup.spacing = scene.spacing;
   setup.gravity = scene.gravity;
-  for (const Material& m : scene.materials) {
-    setup.models.push_back(constitutive::make_model(m.model, m.parameters, "material." + m.name));
-  }
+  setup.models = constitutive::make_scene_models(scene, loading_strength_factor(scene));
   for (const Wall& w : scene.walls) {
     NodeBoundary b;
     b.name = w.name;
@@ -102,7 +101,8 @@ const std::vector<MeshTriangle>* mesh_in_use(const NodalDiscretisation& discreti
 
 class EspfemMethod final : public Solver {
  public:
-  explicit EspfemMethod(const Scene& scene) : solver_(make_setup<EspfemSetup>(scene)) {}
+  explicit EspfemMethod(const Scene& scene)
+      : solver_(make_setup<EspfemSetup>(scene)), strength_(scene) {}
 
   void initialise(const Scene& scene, Particles& particles) override {
     solver_.initialise(particles);
@@ -115,6 +115,7 @@ class EspfemMethod final : public Solver {
 
   double step(const Scene& scene, Particles& particles, double time) override {
     apply_loads(scene, loaded_, time, solver_.external_force());
+    if (strength_.changes_at(scene, time)) solver_.use_models(strength_.models(scene));
     return solver_.step(particles, time);
   }
 
@@ -141,13 +142,16 @@ class EspfemMethod final : public Solver {
   ExplicitSolver solver_;
   AlphaMesh preview_;
   LoadedParticles loaded_;
+  constitutive::StrengthInRun strength_;
 };
 
 /// The implicit SPFEM: one step of the driver is one converged increment.
 class IspfemMethod final : public Solver {
  public:
   explicit IspfemMethod(const Scene& scene)
-      : newmark_(scene.spfem_implicit.newmark), solver_(make_implicit_setup(scene)) {}
+      : newmark_(scene.spfem_implicit.newmark),
+        solver_(make_implicit_setup(scene)),
+        strength_(scene) {}
 
   void initialise(const Scene& scene, Particles& particles) override {
     solver_.initialise(particles);
@@ -157,6 +161,14 @@ class IspfemMethod final : public Solver {
     });
     if (scene.initial_stress.kind == InitialStressKind::gravity_loading) {
       solver_.settle(particles, kSettleIncrements);
+    }
+    // Peng's order: each increment at the strength of its end time (a cut increment also cuts
+    // the fall of the strength it carries)
+    if (strength_changes_in_run(scene)) {
+      solver_.set_models([this, &scene](double t) {
+        if (strength_.changes_at(scene, t)) models_ = strength_.models(scene);
+        return models_.empty() ? nullptr : &models_;
+      });
     }
   }
 
@@ -192,6 +204,8 @@ class IspfemMethod final : public Solver {
   ImplicitSolver solver_;
   LoadedParticles loaded_;
   AlphaMesh preview_;
+  constitutive::StrengthInRun strength_;
+  ImplicitSolver::Models models_;  // at strength_.factor(), once it has left the loading's
 };
 
 }  // namespace

@@ -7,7 +7,8 @@
 #include "common/input_error.hpp"
 #include "common/scene.hpp"
 #include "common/scene_loads.hpp"
-#include "constitutive/registry.hpp"
+#include "common/strength_reduction.hpp"
+#include "constitutive/scene_models.hpp"
 #include "sph/sph_solver.hpp"
 
 namespace duet::sph {
@@ -36,9 +37,7 @@ SphSetup make_setup(const Scene& scene) {
   setup.options = scene.sph;
   setup.spacing = scene.spacing;
   setup.gravity = scene.gravity;
-  for (const Material& m : scene.materials) {
-    setup.models.push_back(constitutive::make_model(m.model, m.parameters, "material." + m.name));
-  }
+  setup.models = constitutive::make_scene_models(scene, loading_strength_factor(scene));
   for (const Wall& w : scene.walls) {
     // A symmetry plane is a free-slip wall to SPH: its ghost particles mirror the material.
     const WallCondition condition =
@@ -78,7 +77,7 @@ SphSetup make_setup(const Scene& scene) {
 
 class SphMethod final : public Solver {
  public:
-  explicit SphMethod(const Scene& scene) : solver_(make_setup(scene)) {}
+  explicit SphMethod(const Scene& scene) : solver_(make_setup(scene)), strength_(scene) {}
 
   void initialise(const Scene& scene, Particles& particles) override {
     solver_.initialise(particles);
@@ -91,6 +90,7 @@ class SphMethod final : public Solver {
 
   double step(const Scene& scene, Particles& particles, double time) override {
     apply_loads(scene, loaded_, time, solver_.external_force());
+    if (strength_.changes_at(scene, time)) solver_.use_models(strength_.models(scene));
     return solver_.step(particles, time);
   }
 
@@ -137,6 +137,7 @@ class SphMethod final : public Solver {
  private:
   SphSolver solver_;
   LoadedParticles loaded_;
+  constitutive::StrengthInRun strength_;
 };
 
 }  // namespace

@@ -153,6 +153,18 @@ void SphSolver::initialise(Particles& particles) {
   timers_.reset();
 }
 
+void SphSolver::use_models(std::vector<std::unique_ptr<constitutive::Model>> models) {
+  if (models.size() != setup_.models.size()) {
+    throw std::invalid_argument("sph: use_models with another number of materials");
+  }
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    if (models[m]->internal_variables().size() != n_internal_[m]) {
+      throw std::invalid_argument("sph: use_models with other internal variables");
+    }
+  }
+  setup_.models = std::move(models);
+}
+
 void SphSolver::pair_loop(const Particles& particles) {
   const duet::SphOptions& o = setup_.options;
   const std::size_t n = particles.size();

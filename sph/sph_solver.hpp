@@ -68,6 +68,10 @@ class SphSolver {
   /// strains and restarts the integrator, so the run starts from the equilibrium stress.
   void settle(Particles& particles, double duration, double damping);
 
+  /// Replaces the material models by models of the same kinds and internal variables (a
+  /// strength reduced during the run: common/strength_reduction.hpp); the next step uses them.
+  void use_models(std::vector<std::unique_ptr<constitutive::Model>> models);
+
   /// External force on each soil particle (N/m), e.g. a scene load; zero unless set. Read at
   /// every step.
   std::vector<Vec2>& external_force() { return external_force_; }

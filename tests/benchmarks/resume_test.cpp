@@ -29,11 +29,13 @@ struct ResumeCase {
   std::string method;
   std::string spacing;
   std::size_t frames;
+  std::string set = "";  // one --set override, or none
 };
 
 std::ostream& operator<<(std::ostream& out, const ResumeCase& c) {
-  return out << c.scene << " through " << c.method << " at dp " << c.spacing << ", killed after "
-             << c.frames << " frames";
+  return out << c.scene << " through " << c.method << " at dp " << c.spacing
+             << (c.set.empty() ? "" : " with " + c.set) << ", killed after " << c.frames
+             << " frames";
 }
 
 std::string quoted(const fs::path& p) {
@@ -49,8 +51,9 @@ int wait_for(pid_t child) {
 /// Starts the case into `out` and kills it (SIGKILL) once run.xdmf lists its `frames` frames.
 void kill_after(const fs::path& out, const ResumeCase& c) {
   fs::remove_all(out);
-  const std::vector<std::string> args = {"--spacing",  c.spacing, "--quiet",
-                                         "--no-plots", "--out",   out.string()};
+  std::vector<std::string> args = {"--spacing",  c.spacing, "--quiet",
+                                   "--no-plots", "--out",   out.string()};
+  if (!c.set.empty()) args.insert(args.end(), {"--set", c.set});
   const pid_t child =
       test::start_run(c.scene, c.method, args, [] { setenv("OMP_NUM_THREADS", "1", 1); });
   const std::size_t frames = c.frames;
@@ -74,7 +77,7 @@ TEST_P(Resume, AKilledRunGoesOnAsIfItHadNeverStopped) {
   const test::DuetResult a = test::run_command(
       "OMP_NUM_THREADS=1 '" + std::string(DUET_BINARY) + "' run '" + DUET_SOURCE_DIR +
       "/benchmarks/scenes/" + c.scene + ".toml' --method " + c.method + " --spacing " + c.spacing +
-      " --quiet --no-plots --out " + quoted(whole));
+      (c.set.empty() ? "" : " --set " + c.set) + " --quiet --no-plots --out " + quoted(whole));
   ASSERT_EQ(a.status, 0) << a.output;
 
   kill_after(killed, c);
@@ -123,15 +126,18 @@ TEST_P(Resume, AKilledRunGoesOnAsIfItHadNeverStopped) {
 // The footing (a rough rigid footing pushed into Tresca clay, 81 frames) early in the elastic part
 // and late under the plateau, through the SPFEM methods; the sand collapse (hypoplastic, no-slip
 // floor, 101 frames, Verlet) through sph; the Bui collapse through espfem, which keeps its mesh
-// between remeshes on the angle trigger (spfem.remesh = angle: the kept mesh is in the state).
-INSTANTIATE_TEST_SUITE_P(KilledAfterFrames, Resume,
-                         testing::Values(ResumeCase{"footing", "ispfem", "0.25", 8},
-                                         ResumeCase{"footing", "ispfem", "0.25", 50},
-                                         ResumeCase{"footing", "espfem", "0.25", 8},
-                                         ResumeCase{"footing", "espfem", "0.25", 50},
-                                         ResumeCase{"collapse", "sph", "0.01", 12},
-                                         ResumeCase{"collapse", "sph", "0.01", 60},
-                                         ResumeCase{"collapse-bui", "espfem", "0.01", 30}));
+// between remeshes on the angle trigger (spfem.remesh = angle: the kept mesh is in the state);
+// the slope at f = 1.3, killed while its strength falls after the gravity loading (Peng's order:
+// the resolved scene once held the reduced strength, and the resumed run reduced it twice).
+INSTANTIATE_TEST_SUITE_P(
+    KilledAfterFrames, Resume,
+    testing::Values(
+        ResumeCase{"footing", "ispfem", "0.25", 8}, ResumeCase{"footing", "ispfem", "0.25", 50},
+        ResumeCase{"footing", "espfem", "0.25", 8}, ResumeCase{"footing", "espfem", "0.25", 50},
+        ResumeCase{"collapse", "sph", "0.01", 12}, ResumeCase{"collapse", "sph", "0.01", 60},
+        ResumeCase{"collapse-bui", "espfem", "0.01", 30},
+        ResumeCase{"slope", "espfem", "1.0", 6, "strength_reduction.factor=1.3"},
+        ResumeCase{"slope", "ispfem", "1.0", 6, "strength_reduction.factor=1.3"}));
 
 /// `duet run --resume DIR` and what it said.
 test::DuetResult resume(const fs::path& dir) {

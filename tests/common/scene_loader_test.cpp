@@ -273,6 +273,12 @@ TEST(SceneLoader, StrengthReductionDividesCohesionAndTangentOfFriction) {
   EXPECT_NEAR(std::get<double>(s.materials[0].parameters.at("c")), 10.0e3 / 1.4, 1e-9);
   EXPECT_NEAR(std::tan(std::get<double>(s.materials[0].parameters.at("phi")) * deg),
               std::tan(20.0 * deg) / 1.4, 1e-12);
+  // The resolved scene (what `duet run --resume` loads) reduces once more as it loads: it keeps
+  // the full strength. It once held the reduced values, and a resumed slope ran at c / f^2.
+  const Scene again = load_scene_checked_from_string(s.resolved_toml, "resolved.toml");
+  EXPECT_DOUBLE_EQ(again.strength_reduction.factor, 1.4);
+  EXPECT_EQ(again.materials[0].parameters, s.materials[0].parameters);
+  EXPECT_EQ(again.materials[0].full_strength, s.materials[0].full_strength);
 }
 
 // Every bad scene: refused with InputError whose message starts with the file's path and

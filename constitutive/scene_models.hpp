@@ -1,0 +1,36 @@
+#pragma once
+// The models of a scene's materials, by material index, at a strength-reduction factor (the
+// scene's own factor for the run; 1 for gravity loading under Peng's order:
+// common/strength_reduction.hpp). Each solver's setup holds such a list.
+
+#include <memory>
+#include <vector>
+
+#include "common/scene.hpp"
+#include "constitutive/model.hpp"
+
+namespace duet::constitutive {
+
+using Models = std::vector<std::unique_ptr<Model>>;
+
+/// Every material's model built from its full-strength parameters reduced by `factor`
+/// (Peng 2015 eqs 39-40); at the scene's factor, the models of `scene.materials` as loaded.
+Models make_scene_models(const Scene& scene, double factor);
+
+/// The strength factor of a run whose strength falls after gravity loading (Peng's order:
+/// common/strength_reduction.hpp), followed step by step: a solver swaps its models when it
+/// changes. Starts at the factor the gravity loading used.
+class StrengthInRun {
+ public:
+  explicit StrengthInRun(const Scene& scene);
+  /// True when the factor at run time `time` differs from the last one seen (now `factor()`).
+  bool changes_at(const Scene& scene, double time);
+  double factor() const { return factor_; }
+  /// The models at `factor()`.
+  Models models(const Scene& scene) const { return make_scene_models(scene, factor_); }
+
+ private:
+  double factor_;
+};
+
+}  // namespace duet::constitutive
