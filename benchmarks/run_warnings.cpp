@@ -108,6 +108,19 @@ void add_diagnostic_warnings(const Scene& scene, const Json& diagnostics, std::s
                   diagnostic(diagnostics, "newton.cuts"));
     out.emplace_back(text);
   }
+  // ispfem: converged increments whose solution squeezed a triangle (spfem/implicit_solver.cpp):
+  // the curve jumps there
+  if (const double snaps = diagnostic(diagnostics, "newton.snaps"); snaps > 0.0) {
+    std::snprintf(text, sizeof text,
+                  "snap-through: %.0f converged increment%s squeezed a triangle of the mesh below "
+                  "%g of its area or turned it inside out (worst area ratio %.3g), the first "
+                  "ending at t = %.4g s: nodal integration's soft modes jumped, and measures may "
+                  "jump with them. spfem.implicit.snap = \"refuse\" makes such an increment fail",
+                  snaps, snaps == 1.0 ? "" : "s", implicit.min_area_ratio,
+                  diagnostic(diagnostics, "newton.snap_worst_area_ratio"),
+                  diagnostic(diagnostics, "newton.snap_first_time"));
+    out.emplace_back(text);
+  }
 }
 
 }  // namespace

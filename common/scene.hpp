@@ -269,6 +269,11 @@ struct SpfemImplicitOptions {
   int easy_iterations = 4;
   int max_step_cuts = 8;
   int active_set_passes = 3;  // contact changes re-solved within one increment
+  // A converged increment that leaves a triangle of its mesh less than this fraction of its area
+  // (or turns one inside out) is a snap-through: counted and warned of, or with refuse_snaps
+  // refused and cut (snap = "refuse")
+  double min_area_ratio = 0.5;
+  bool refuse_snaps = false;
   // Newton's start on the free dofs: the last increment's motion scaled to this one
   // (extrapolated) or rest (none, the linearised step from the converged state)
   bool extrapolate = false;

@@ -432,6 +432,10 @@ SpfemImplicitOptions read_implicit(SectionReader& r) {
   o.easy_iterations = r.integer("easy_iterations", o.easy_iterations, 1);
   o.max_step_cuts = r.integer("max_step_cuts", o.max_step_cuts, 0);
   o.active_set_passes = r.integer("active_set_passes", o.active_set_passes, 1);
+  o.min_area_ratio = r.number("min_area_ratio", o.min_area_ratio,
+                              in_closed(0.0, 0.99, "a fraction of a triangle's area (-)"));
+  o.refuse_snaps =
+      r.choice("snap", {"warn", "refuse"}, o.refuse_snaps ? "refuse" : "warn") == "refuse";
   o.extrapolate = r.choice("predictor", {"extrapolated", "none"},
                            o.extrapolate ? "extrapolated" : "none") == "extrapolated";
   o.newmark = r.choice("dynamics", {"quasi-static", "newmark"},

@@ -3,6 +3,8 @@
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #if defined(__GLIBC__)
@@ -160,6 +162,41 @@ std::string ImplicitSolver::wall_crossing(const std::vector<Vec2>& x, const std:
   }
   discretisation_.place_boundaries(t0, settling_);
   return out;
+}
+
+ImplicitSolver::SqueezedTriangle ImplicitSolver::most_squeezed_triangle(
+    const std::vector<Vec2>& x, const std::vector<Vec2>& u) const {
+  // Slivers of the alpha shape's surface (area far below a lattice triangle's dp^2 / 2) turn
+  // over under any motion of their nodes: only triangles of a fair size count
+  constexpr double kFairTriangle = 0.25;  // twice the area, in dp^2: a quarter of a lattice one's
+  const double dp = setup_.spacing;
+  const auto twice_area = [](const Vec2& p, const Vec2& q) {
+    return p.x() * q.y() - p.y() * q.x();
+  };
+  SqueezedTriangle worst;
+  for (const Triangle& t : discretisation_.mesh().triangles) {
+    const auto [a, b, c] = t;
+    const double before = twice_area(x[b] - x[a], x[c] - x[a]);
+    const double after = twice_area(x[b] + u[b] - x[a] - u[a], x[c] + u[c] - x[a] - u[a]);
+    if (before > kFairTriangle * dp * dp && after < worst.ratio * before) {
+      worst.ratio = after / before;
+      worst.triangle = t;
+      worst.at = x[a];
+    }
+  }
+  return worst;
+}
+
+std::string ImplicitSolver::SqueezedTriangle::describe(double floor) const {
+  std::ostringstream why;
+  why.precision(3);
+  why << "the converged increment " << (ratio <= 0.0 ? "turns" : "squeezes")
+      << " the triangle of nodes " << triangle[0] << ", " << triangle[1] << ", " << triangle[2]
+      << " (near x = " << at.x() << " m, y = " << at.y() << " m) "
+      << (ratio <= 0.0 ? "inside out" : "to a fraction of its area") << " (area ratio " << ratio
+      << ", below spfem.implicit.min_area_ratio = " << floor
+      << "): a snap-through, refused with spfem.implicit.snap = \"refuse\"";
+  return why.str();
 }
 
 ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, double t0,
@@ -457,6 +494,26 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     return attempt;
   }
 
+  // One that turns a triangle of its mesh inside out or squeezes it below min_area_ratio of its
+  // area is a snap-through of nodal integration's soft modes, not the soil's response: a
+  // quasi-static increment is small against dp (footing-deep at dp 0.125: nodes by the footing's
+  // corner jumped 0.2 m in an increment that moved the footing 0.2 mm, inverting triangles, and
+  // the bearing fell from 6.9 to 1.8 c_u). Cuts do not avoid it (the discrete path branches
+  // there), so by default it is counted and warned of; snap = "refuse" cuts it and fails.
+  const SqueezedTriangle squeezed =
+      settling_ ? SqueezedTriangle{}
+                : most_squeezed_triangle(particles.position, attempt.displacement);
+  const bool snapped = squeezed.ratio < o.min_area_ratio || squeezed.ratio <= 0.0;
+  if (snapped && o.refuse_snaps) {
+    attempt.converged = false;
+    attempt.why = squeezed.describe(o.min_area_ratio);
+    return attempt;
+  }
+  if (snapped) {
+    if (counters_.snaps++ == 0) counters_.snap_first_time = t1;
+    counters_.snap_worst_ratio = std::min(counters_.snap_worst_ratio, squeezed.ratio);
+  }
+
   // Commit: the converged state of the increment
   const double dt = t1 - t0;
   const std::vector<Vec2>& u = attempt.displacement;
@@ -610,6 +667,9 @@ Json ImplicitSolver::diagnostics() const {
   newton["releases"] = c.releases;
   newton["attachments"] = c.attachments;
   newton["constrained_nodes_max"] = c.constrained_nodes_max;
+  newton["snaps"] = c.snaps;
+  newton["snap_first_time"] = c.snaps > 0 ? Json(c.snap_first_time) : Json();
+  newton["snap_worst_area_ratio"] = c.snaps > 0 ? Json(c.snap_worst_ratio) : Json();
   newton["tolerance"] = setup_.implicit.tolerance;
   newton["displacement_tolerance"] = setup_.implicit.displacement_tolerance;
   newton["residual_scale"] = "max(|F_ext|, |reaction|) over the increment's iterate";
@@ -649,7 +709,8 @@ void ImplicitSolver::save_state(StateBag& state) const {
                           double(c.iterations_max), double(c.active_set_passes), double(c.releases),
                           double(c.attachments), double(c.factorisations),
                           double(c.line_search_halvings), c.increment_min, c.increment_max,
-                          double(c.constrained_nodes_max)});
+                          double(c.constrained_nodes_max), double(c.snaps), c.snap_first_time,
+                          c.snap_worst_ratio});
   put_lists(state, "solver.residual_history", c.residual_history);
   discretisation_.save_state(state, "solver.mesh_counters");
 }
@@ -667,7 +728,7 @@ void ImplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
   sized("solver.acceleration", 2 * nodes);
   sized("solver.boundary_force", 2 * boundary_force_.size());
   sized("solver.scalars", 4);
-  sized("solver.counters", 12);
+  sized("solver.counters", 15);
   get_integers(state, "solver.released", released_);
   get_bits(state, "solver.rigid_contact", held_by_);
   get(state, "solver.previous_u", previous_u_);
@@ -692,6 +753,9 @@ void ImplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
   c.increment_min = k[9];
   c.increment_max = k[10];
   c.constrained_nodes_max = static_cast<long>(k[11]);
+  c.snaps = static_cast<long>(k[12]);
+  c.snap_first_time = k[13];
+  c.snap_worst_ratio = k[14];
   get_lists(state, "solver.residual_history", c.residual_history);
   discretisation_.restore_state(state, "solver.mesh_counters", nodes);
 }

@@ -51,6 +51,9 @@ struct NewtonCounters {
   double increment_min = 0.0;  // s
   double increment_max = 0.0;  // s
   long constrained_nodes_max = 0;
+  long snaps = 0;                 // increments that squeezed a triangle below min_area_ratio
+  double snap_first_time = 0.0;   // s, the first one's end
+  double snap_worst_ratio = 1.0;  // the smallest area ratio among them (< 0: inside out)
   // The relative residual after each iteration, one list per converged increment.
   std::vector<std::vector<double>> residual_history;
 };
@@ -110,6 +113,16 @@ class ImplicitSolver {
   /// described; "" when none does.
   std::string wall_crossing(const std::vector<Vec2>& x, const std::vector<Vec2>& u, double t0,
                             double t1);
+  /// The fair-sized triangle of the increment's mesh whose area x -> x + u shrinks most
+  /// (ratio 1 and no triangle when none shrinks).
+  struct SqueezedTriangle {
+    double ratio = 1.0;  // area at the end over area at the start; <= 0: inside out
+    Triangle triangle{};
+    Vec2 at = Vec2::Zero();
+    std::string describe(double floor) const;
+  };
+  SqueezedTriangle most_squeezed_triangle(const std::vector<Vec2>& x,
+                                          const std::vector<Vec2>& u) const;
 
   IspfemSetup setup_;
   NodalDiscretisation discretisation_;
