@@ -150,10 +150,12 @@ class SphSolver {
   std::vector<Vec2> dummy_position_;
   std::vector<Vec2> dummy_velocity_;
   std::vector<std::int32_t> dummy_wall_;
-  std::vector<std::uint32_t> ghost_source_;   // per candidate: soil particle mirrored
-  std::vector<std::uint32_t> ghost_wall_;     // per candidate: wall
-  std::vector<std::uint32_t> ghost_segment_;  // per candidate: segment of that wall
-  std::vector<Vec2> boundary_position_;       // dummies, then ghost candidates (output only)
+  std::vector<std::uint32_t> ghost_source_;  // per candidate: soil particle mirrored
+  std::vector<std::uint32_t> ghost_wall_;    // per candidate: wall
+  // per candidate: segment of that wall, or with kVertexGhost the vertex starting that segment
+  std::vector<std::uint32_t> ghost_segment_;
+  static constexpr std::uint32_t kVertexGhost = 0x80000000u;
+  std::vector<Vec2> boundary_position_;  // dummies, then ghost candidates (output only)
   std::size_t n_active_ghosts_ = 0;
 
   // Working order: order_[k] is the soil particle at working position k (sorted by cell at the

@@ -122,6 +122,33 @@ bool mirror_particle(const WallGeometry& wall, std::size_t segment, const Vec2& 
   return u >= 0.0 && u <= 1.0 && d >= 0.0 && d < reach;
 }
 
+std::ptrdiff_t segment_before(const WallGeometry& wall, std::size_t after) {
+  if (after > 0) return static_cast<std::ptrdiff_t>(after) - 1;
+  const std::size_t points = wall.points.size();
+  const bool closed = points > 3 && wall.points.front() == wall.points.back();
+  return closed ? static_cast<std::ptrdiff_t>(points) - 2 : -1;
+}
+
+bool mirror_at_vertex(const WallGeometry& wall, std::size_t after, const Vec2& x, const Vec2& v,
+                      double reach, Vec2& x_ghost, Vec2& v_ghost, Vec2& normal) {
+  const std::ptrdiff_t before = segment_before(wall, after);
+  const Vec2 p = wall.points[after];
+  const Vec2 r = x - p;
+  const double distance = r.norm();
+  normal = distance > 0.0 ? Vec2(r / distance) : wall.normals[after];
+  const Vec2 relative = v - wall.point_velocity[after];
+  x_ghost = p - r;
+  v_ghost = wall.point_velocity[after] + relative - 2.0 * relative.dot(normal) * normal;
+  if (before < 0 || !(distance < reach)) return false;
+  const auto b = static_cast<std::size_t>(before);
+  const Vec2 t_before = wall.points[b + 1] - wall.points[b];
+  const Vec2 t_after = wall.points[after + 1] - p;
+  // In the wedge: beyond the end of the segment before and the start of the one after, in
+  // front of both (only a convex vertex, seen from the soil, has such points)
+  return r.dot(t_before) > 0.0 && r.dot(t_after) < 0.0 && r.dot(wall.normals[b]) >= 0.0 &&
+         r.dot(wall.normals[after]) >= 0.0;
+}
+
 void append_ghost_particles(const WallGeometry& wall, std::int32_t wall_index,
                             std::span<const Vec2> soil_position,
                             std::span<const Vec2> soil_velocity, double reach,

@@ -67,6 +67,20 @@ bool behind_wall(const WallGeometry& wall, const Vec2& x, double depth);
 bool mirror_particle(const WallGeometry& wall, std::size_t segment, const Vec2& x, const Vec2& v,
                      double reach, Vec2& x_ghost, Vec2& v_ghost);
 
+/// The segment before the vertex that starts segment `after` (after - 1; for a closed polyline,
+/// whose last point repeats the first, the last segment before vertex 0), or -1 when `after`
+/// starts the polyline.
+std::ptrdiff_t segment_before(const WallGeometry& wall, std::size_t after);
+
+/// The ghost of a soil particle at x in the wedge beyond a convex vertex, where it projects onto
+/// neither segment (the soil wraps round the vertex, as round the chorded wall of a cavity): its
+/// mirror image across the line through the vertex normal to x - vertex (the point reflection),
+/// the velocity's component along `normal` = (x - vertex) / |x - vertex| reversed relative to
+/// the vertex's. Without it such a particle had no ghost and slid through the vertex (the SPH
+/// cavity at dp 0.35). Returns whether the ghost acts: x lies in the wedge, within `reach`.
+bool mirror_at_vertex(const WallGeometry& wall, std::size_t after, const Vec2& x, const Vec2& v,
+                      double reach, Vec2& x_ghost, Vec2& v_ghost, Vec2& normal);
+
 /// Ghost particles of a free-slip wall, appended to the output arrays: for every soil particle
 /// within `reach` in front of a segment, its mirror image across the segment line, with the
 /// normal component of its velocity (relative to the wall, whose velocity is interpolated

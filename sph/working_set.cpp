@@ -62,6 +62,15 @@ void SphSolver::select_ghosts(const Particles& particles) {
         ghost_wall_.push_back(static_cast<std::uint32_t>(w));
         ghost_segment_.push_back(static_cast<std::uint32_t>(s));
       }
+      // The wedge beyond the vertex that starts segment s (mirror_at_vertex): candidates within
+      // reach of the vertex
+      if (segment_before(g, s) < 0) continue;
+      for (std::size_t i = 0; i < particles.size(); ++i) {
+        if ((particles.position[i] - a).norm() >= reach + skin_) continue;
+        ghost_source_.push_back(static_cast<std::uint32_t>(i));
+        ghost_wall_.push_back(static_cast<std::uint32_t>(w));
+        ghost_segment_.push_back(static_cast<std::uint32_t>(s) | kVertexGhost);
+      }
     }
   }
 }
@@ -115,14 +124,18 @@ double SphSolver::gather(const Particles& particles) {
     // reach carries no mass, so it adds nothing to any sum.
     const std::size_t src = ghost_source_[g];
     const WallGeometry& wall = geometry_[ghost_wall_[g]];
-    const std::size_t segment = ghost_segment_[g];
+    const bool at_vertex = (ghost_segment_[g] & kVertexGhost) != 0;
+    const std::size_t segment = ghost_segment_[g] & ~kVertexGhost;
     Vec2 x, v;
-    const bool acts = mirror_particle(wall, segment, particles.position[src],
-                                      particles.velocity[src], reach, x, v);
+    Vec2 normal = wall.normals[segment];
+    const bool acts = at_vertex ? mirror_at_vertex(wall, segment, particles.position[src],
+                                                   particles.velocity[src], reach, x, v, normal)
+                                : mirror_particle(wall, segment, particles.position[src],
+                                                  particles.velocity[src], reach, x, v);
     active += acts ? 1 : 0;
     if (cached) unchanged = unchanged && same(n + g, x);
     const double rho = particles.density[src];
-    const Mat2 s = mirror(in_plane(particles.stress[src]), wall.normals[segment]);
+    const Mat2 s = mirror(in_plane(particles.stress[src]), normal);
     const double inv_rho2 = 1.0 / (rho * rho);
     const double m = acts ? particles.mass[src] : 0.0;
     work_[n + g] = {x.x(),

@@ -1,0 +1,90 @@
+// Ghosts of free-slip walls (sph/walls.hpp): across a segment where a particle projects onto it,
+// and across a convex vertex for a particle in the wedge beyond it, where it projects onto
+// neither segment (the soil round a chorded cavity wall).
+#include "sph/walls.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace duet::sph {
+namespace {
+
+/// A wall of the given points, the normals on the given side of each segment (left: +1), still.
+WallGeometry wall_of(std::vector<Vec2> points, int side) {
+  WallGeometry w;
+  w.points = std::move(points);
+  for (std::size_t s = 0; s + 1 < w.points.size(); ++s) {
+    const Vec2 t = (w.points[s + 1] - w.points[s]).normalized();
+    w.side.push_back(side);
+    w.normals.push_back(side * Vec2(-t.y(), t.x()));
+  }
+  w.point_velocity.assign(w.points.size(), Vec2::Zero());
+  return w;
+}
+
+Vec2 polar(double r, double degrees) {
+  const double a = degrees * std::numbers::pi / 180.0;
+  return r * Vec2(std::cos(a), std::sin(a));
+}
+
+TEST(Walls, AParticleBeyondAConvexVertexIsMirroredThroughIt) {
+  // A quarter cavity of radius 1 in two chords, the soil outside (normals away from the centre)
+  const WallGeometry cavity = wall_of({polar(1, 0), polar(1, 45), polar(1, 90)}, -1);
+  ASSERT_GT(cavity.normals[0].dot(polar(1, 22.5)), 0.0);
+  const Vec2 vertex = polar(1, 45);
+  const Vec2 x = vertex + polar(0.1, 45);  // radially out from the vertex
+  const Vec2 v = -polar(2.0, 45);          // moving onto it
+  Vec2 xg, vg, n;
+  // Neither segment has a ghost for it: it projects onto neither
+  EXPECT_FALSE(mirror_particle(cavity, 0, x, v, 0.5, xg, vg));
+  EXPECT_FALSE(mirror_particle(cavity, 1, x, v, 0.5, xg, vg));
+  // The vertex does: the point reflection, the normal velocity reversed
+  ASSERT_TRUE(mirror_at_vertex(cavity, 1, x, v, 0.5, xg, vg, n));
+  EXPECT_NEAR((xg - (vertex - polar(0.1, 45))).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((n - polar(1, 45)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((vg - polar(2.0, 45)).norm(), 0.0, 1e-14);
+  // Tangential motion is kept
+  const Vec2 slide = polar(1.0, 135);
+  ASSERT_TRUE(mirror_at_vertex(cavity, 1, x, slide, 0.5, xg, vg, n));
+  EXPECT_NEAR((vg - slide).norm(), 0.0, 1e-14);
+  // Out of reach, or where it projects onto a segment: no vertex ghost
+  EXPECT_FALSE(mirror_at_vertex(cavity, 1, vertex + polar(0.6, 45), v, 0.5, xg, vg, n));
+  const Vec2 beside = polar(1.1, 30);
+  EXPECT_FALSE(mirror_at_vertex(cavity, 1, beside, v, 0.5, xg, vg, n));
+  EXPECT_TRUE(mirror_particle(cavity, 0, beside, v, 0.5, xg, vg));
+  // The start of an open polyline is no vertex
+  EXPECT_EQ(segment_before(cavity, 0), -1);
+  EXPECT_FALSE(mirror_at_vertex(cavity, 0, polar(1.1, -10), v, 0.5, xg, vg, n));
+}
+
+TEST(Walls, EveryPointNearAVertexHasOneGhostConvexAndNoneFromAConcaveVertex) {
+  // Convex: every point in front of the chorded cavity, within reach of its middle vertex,
+  // gets exactly one acting ghost (from a segment or from the vertex)
+  const WallGeometry cavity = wall_of({polar(1, 0), polar(1, 45), polar(1, 90)}, -1);
+  // Concave: the inside corner of a box, soil inside (left normals)
+  const WallGeometry box = wall_of({Vec2(0, 0), Vec2(1, 0), Vec2(1, 1)}, 1);
+  Vec2 xg, vg, n;
+  int convex_points = 0;
+  for (int i = 0; i <= 40; ++i) {
+    for (int j = 0; j <= 40; ++j) {
+      const Vec2 x = polar(1, 45) + Vec2(-0.4 + 0.02 * i, -0.4 + 0.02 * j);
+      const bool in_front =
+          signed_distance(cavity, 0, x) > 0.0 && signed_distance(cavity, 1, x) > 0.0;
+      if (in_front && (x - polar(1, 45)).norm() < 0.3) {
+        ++convex_points;
+        const int ghosts = int(mirror_particle(cavity, 0, x, Vec2::Zero(), 0.5, xg, vg)) +
+                           int(mirror_particle(cavity, 1, x, Vec2::Zero(), 0.5, xg, vg)) +
+                           int(mirror_at_vertex(cavity, 1, x, Vec2::Zero(), 0.5, xg, vg, n));
+        EXPECT_EQ(ghosts, 1) << x.transpose();
+      }
+      const Vec2 y = Vec2(1, 0) + Vec2(-0.4 + 0.02 * i, -0.4 + 0.02 * j);
+      EXPECT_FALSE(mirror_at_vertex(box, 1, y, Vec2::Zero(), 0.5, xg, vg, n)) << y.transpose();
+    }
+  }
+  EXPECT_GT(convex_points, 100);
+}
+
+}  // namespace
+}  // namespace duet::sph
