@@ -149,23 +149,4 @@ bool mirror_at_vertex(const WallGeometry& wall, std::size_t after, const Vec2& x
          r.dot(wall.normals[after]) >= 0.0;
 }
 
-void append_ghost_particles(const WallGeometry& wall, std::int32_t wall_index,
-                            std::span<const Vec2> soil_position,
-                            std::span<const Vec2> soil_velocity, double reach,
-                            std::vector<Vec2>& position, std::vector<Vec2>& velocity,
-                            std::vector<std::int32_t>& wall_of, std::vector<std::int32_t>& source,
-                            std::vector<Vec2>& normal) {
-  for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
-    for (std::size_t i = 0; i < soil_position.size(); ++i) {
-      Vec2 x, v;
-      if (!mirror_particle(wall, s, soil_position[i], soil_velocity[i], reach, x, v)) continue;
-      position.push_back(x);
-      velocity.push_back(v);
-      wall_of.push_back(wall_index);
-      source.push_back(static_cast<std::int32_t>(i));
-      normal.push_back(wall.normals[s]);
-    }
-  }
-}
-
 }  // namespace duet::sph

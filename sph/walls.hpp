@@ -81,16 +81,4 @@ std::ptrdiff_t segment_before(const WallGeometry& wall, std::size_t after);
 bool mirror_at_vertex(const WallGeometry& wall, std::size_t after, const Vec2& x, const Vec2& v,
                       double reach, Vec2& x_ghost, Vec2& v_ghost, Vec2& normal);
 
-/// Ghost particles of a free-slip wall, appended to the output arrays: for every soil particle
-/// within `reach` in front of a segment, its mirror image across the segment line, with the
-/// normal component of its velocity (relative to the wall, whose velocity is interpolated
-/// between the segment's end points) reversed. `source` gets the soil
-/// particle's index and `normal` the segment normal (to mirror tensors: R = I - 2 n n^T).
-void append_ghost_particles(const WallGeometry& wall, std::int32_t wall_index,
-                            std::span<const Vec2> soil_position,
-                            std::span<const Vec2> soil_velocity, double reach,
-                            std::vector<Vec2>& position, std::vector<Vec2>& velocity,
-                            std::vector<std::int32_t>& wall_of, std::vector<std::int32_t>& source,
-                            std::vector<Vec2>& normal);
-
 }  // namespace duet::sph
