@@ -35,6 +35,7 @@ double loading_strength_factor(const Scene& scene) {
 double strength_factor_at(const Scene& scene, double time) {
   const double f = scene.strength_reduction.factor;
   if (!strength_changes_in_run(scene)) return f;
+  if (time <= 0.0) return 1.0;  // the state gravity loading left, at full strength
   const double ramp = scene.strength_reduction.ramp;
   if (ramp <= 0.0 || time >= ramp) return f;
   return 1.0 + (f - 1.0) * std::clamp(time / ramp, 0.0, 1.0);

@@ -22,7 +22,8 @@ bool reduce_strength(std::map<std::string, ParameterValue>& parameters, double f
 /// The factor the gravity loading uses: 1 under stage "after-loading", else the scene's.
 double loading_strength_factor(const Scene& scene);
 
-/// The factor in effect at run time `time` (the clock starts after any gravity loading).
+/// The factor in effect at run time `time` (the clock starts after any gravity loading; at
+/// time 0 the soil is as the loading left it, at full strength under stage "after-loading").
 double strength_factor_at(const Scene& scene, double time);
 
 /// True when the strength changes during the run (after-loading with a factor other than 1).

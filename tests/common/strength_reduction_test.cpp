@@ -85,6 +85,7 @@ TEST(StrengthReduction, AfterLoadingTheSoilSettlesAtFullStrengthAndTheFactorRamp
   EXPECT_DOUBLE_EQ(strength_factor_at(s, 4.0), 1.5);
   // At once without a ramp
   const Scene at_once = slope({"strength_reduction.factor=1.5"});
+  EXPECT_DOUBLE_EQ(strength_factor_at(at_once, 0.0), 1.0);  // as loaded
   EXPECT_DOUBLE_EQ(strength_factor_at(at_once, 1e-9), 1.5);
 }
 
