@@ -1,5 +1,8 @@
 #include "constitutive/scene_models.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include "common/strength_reduction.hpp"
 #include "constitutive/registry.hpp"
 
@@ -11,6 +14,20 @@ Models make_scene_models(const Scene& scene, double factor) {
     models.push_back(make_model(m.model, parameters_at(scene, m, factor), "material." + m.name));
   }
   return models;
+}
+
+void replace_models(Models& models, Models replacement, const char* solver) {
+  if (replacement.size() != models.size()) {
+    throw std::invalid_argument(std::string(solver) +
+                                ": use_models with another number of materials");
+  }
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    if (replacement[m]->internal_variables().size() != models[m]->internal_variables().size()) {
+      throw std::invalid_argument(std::string(solver) +
+                                  ": use_models with other internal variables");
+    }
+  }
+  models = std::move(replacement);
 }
 
 StrengthInRun::StrengthInRun(const Scene& scene) : factor_(loading_strength_factor(scene)) {}

@@ -17,6 +17,10 @@ using Models = std::vector<std::unique_ptr<Model>>;
 /// (Peng 2015 eqs 39-40); at the scene's factor, the models of `scene.materials` as loaded.
 Models make_scene_models(const Scene& scene, double factor);
 
+/// Replaces `models` by `replacement`, which must have as many models with as many internal
+/// variables each (a strength reduced during the run); `solver` names the caller in the error.
+void replace_models(Models& models, Models replacement, const char* solver);
+
 /// The strength factor of a run whose strength falls after gravity loading (Peng's order:
 /// common/strength_reduction.hpp), followed step by step: a solver swaps its models when it
 /// changes. Starts at the factor the gravity loading used.
@@ -25,8 +29,7 @@ class StrengthInRun {
   explicit StrengthInRun(const Scene& scene);
   /// True when the factor at run time `time` differs from the last one seen (now `factor()`).
   bool changes_at(const Scene& scene, double time);
-  double factor() const { return factor_; }
-  /// The models at `factor()`.
+  /// The models at the factor last seen.
   Models models(const Scene& scene) const { return make_scene_models(scene, factor_); }
 
  private:

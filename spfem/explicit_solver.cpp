@@ -12,6 +12,7 @@
 #include "common/input_error.hpp"
 #include "common/solver.hpp"
 #include "constitutive/objective.hpp"
+#include "constitutive/scene_models.hpp"
 
 namespace duet::spfem {
 
@@ -107,15 +108,7 @@ void ExplicitSolver::initialise(Particles& particles) {
 }
 
 void ExplicitSolver::use_models(std::vector<std::unique_ptr<constitutive::Model>> models) {
-  if (models.size() != setup_.models.size()) {
-    throw std::invalid_argument("espfem: use_models with another number of materials");
-  }
-  for (std::size_t m = 0; m < models.size(); ++m) {
-    if (models[m]->internal_variables().size() != n_internal_[m]) {
-      throw std::invalid_argument("espfem: use_models with other internal variables");
-    }
-  }
-  setup_.models = std::move(models);
+  constitutive::replace_models(setup_.models, std::move(models), "espfem");
 }
 
 double ExplicitSolver::time_step(const Particles& particles) {

@@ -3,8 +3,6 @@
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #if defined(__GLIBC__)
@@ -498,8 +496,9 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
   // area is a snap-through of nodal integration's soft modes, not the soil's response: a
   // quasi-static increment is small against dp (footing-deep at dp 0.125: nodes by the footing's
   // corner jumped 0.2 m in an increment that moved the footing 0.2 mm, inverting triangles, and
-  // the bearing fell from 6.9 to 1.8 c_u). Cuts do not avoid it (the discrete path branches
-  // there), so by default it is counted and warned of; snap = "refuse" cuts it and fails.
+  // the bearing fell from 6.9 to 1.8 c_u). Cuts avoid some and not others (the discrete path
+  // branches there), so by default it is counted and warned of; snap = "refuse" cuts it and
+  // fails when the cuts run out.
   const SqueezedTriangle squeezed =
       settling_ ? SqueezedTriangle{}
                 : most_squeezed_triangle(particles.position, attempt.displacement);

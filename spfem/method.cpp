@@ -205,7 +205,7 @@ class IspfemMethod final : public Solver {
   LoadedParticles loaded_;
   AlphaMesh preview_;
   constitutive::StrengthInRun strength_;
-  ImplicitSolver::Models models_;  // at strength_.factor(), once it has left the loading's
+  ImplicitSolver::Models models_;  // at strength_'s factor, once it has left the loading's
 };
 
 }  // namespace

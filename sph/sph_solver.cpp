@@ -12,6 +12,7 @@
 #include "common/solver.hpp"
 #include "common/suggest.hpp"
 #include "constitutive/objective.hpp"
+#include "constitutive/scene_models.hpp"
 #include "sph/dummy_velocity.hpp"
 #include "sph/pair_terms.hpp"
 
@@ -154,15 +155,7 @@ void SphSolver::initialise(Particles& particles) {
 }
 
 void SphSolver::use_models(std::vector<std::unique_ptr<constitutive::Model>> models) {
-  if (models.size() != setup_.models.size()) {
-    throw std::invalid_argument("sph: use_models with another number of materials");
-  }
-  for (std::size_t m = 0; m < models.size(); ++m) {
-    if (models[m]->internal_variables().size() != n_internal_[m]) {
-      throw std::invalid_argument("sph: use_models with other internal variables");
-    }
-  }
-  setup_.models = std::move(models);
+  constitutive::replace_models(setup_.models, std::move(models), "sph");
 }
 
 void SphSolver::pair_loop(const Particles& particles) {
