@@ -274,6 +274,9 @@ struct SpfemImplicitOptions {
   // refused and cut (snap = "refuse")
   double min_area_ratio = 0.5;
   bool refuse_snaps = false;
+  // The stiffness stabilisation's energy anchored to each increment's start, with 2 G as its
+  // modulus (spfem/increment_operator.hpp); 0 = off
+  double increment_stabilisation = 0.0;
   // Newton's start on the free dofs: the last increment's motion scaled to this one
   // (extrapolated) or rest (none, the linearised step from the converged state)
   bool extrapolate = false;

@@ -199,6 +199,8 @@ std::vector<SceneKey> make_keys() {
        "contact changes re-solved within one increment"},
       {"spfem.implicit", "min_area_ratio", "number", "-", "0.5",
        "an increment leaving a triangle below this fraction of its area (or inside out) snaps"},
+      {"spfem.implicit", "increment_stabilisation", "number", "-", "0.0",
+       "stiffness stabilisation anchored to each increment's start, modulus 2 G (0: off)"},
       {"spfem.implicit", "snap", "string", "-", "\"warn\"",
        "warn: count snap-throughs and warn | refuse: cut such an increment, fail after the cuts"},
       {"spfem.implicit", "predictor", "string", "-", "\"none\"",

@@ -434,6 +434,8 @@ SpfemImplicitOptions read_implicit(SectionReader& r) {
   o.active_set_passes = r.integer("active_set_passes", o.active_set_passes, 1);
   o.min_area_ratio = r.number("min_area_ratio", o.min_area_ratio,
                               in_closed(0.0, 0.99, "a fraction of a triangle's area (-)"));
+  o.increment_stabilisation = r.number("increment_stabilisation", o.increment_stabilisation,
+                                       non_negative("an increment stabilisation coefficient (-)"));
   o.refuse_snaps =
       r.choice("snap", {"warn", "refuse"}, o.refuse_snaps ? "refuse" : "warn") == "refuse";
   o.extrapolate = r.choice("predictor", {"extrapolated", "none"},

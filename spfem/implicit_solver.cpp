@@ -58,6 +58,9 @@ ImplicitSolver::ImplicitSolver(IspfemSetup setup)
   if (o.max_iterations < 1) throw InputError("spfem.implicit.max_iterations must be >= 1");
   if (o.load_steps < 1) throw InputError("spfem.implicit.load_steps must be >= 1");
   if (!(o.increment >= 0.0)) throw InputError("spfem.implicit.increment must be >= 0 s");
+  if (!(o.increment_stabilisation >= 0.0)) {
+    throw InputError("spfem.implicit.increment_stabilisation must be >= 0");
+  }
 }
 
 void ImplicitSolver::initialise(Particles& particles) {
@@ -260,7 +263,7 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
   }
   const Models* models_now = models_at_ ? models_at_(t1) : nullptr;
   IncrementOperator op(discretisation_, models_now ? *models_now : setup_.models, particles,
-                       wall_increment, &timers_);
+                       wall_increment, &timers_, o.increment_stabilisation);
   const double scale_dt = previous_increment_ > 0.0 ? (t1 - t0) / previous_increment_ : 0.0;
   // Newmark's average acceleration (beta 1/4, gamma 1/2): a_n+1 = c (u - dt v_n) - a_n with
   // c = 1 / (beta dt^2); the inertia M a_n+1 joins F_int and c M the tangent's diagonal

@@ -49,7 +49,7 @@ Eigen::Matrix<double, 3, 2> strain_operator(const Vec2& b) {
 IncrementOperator::IncrementOperator(
     NodalDiscretisation& discretisation,
     const std::vector<std::unique_ptr<constitutive::Model>>& models, const Particles& start,
-    std::vector<Vec2> wall_increment, Timers* timers)
+    std::vector<Vec2> wall_increment, Timers* timers, double increment_stabilisation)
     : discretisation_(discretisation),
       models_(models),
       start_(start),
@@ -66,16 +66,31 @@ IncrementOperator::IncrementOperator(
   material_tangent_.assign(n, Mat3::Zero());
   spin_stress_.assign(n, Vec3::Zero());
   internal_force_.assign(n, Vec2::Zero());
-  if (discretisation_.options().stiffness_stabilisation > 0.0) {
-    reference_position_.resize(n);
-    block_modulus_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      reference_position_[i] = start.position[i] - start.displacement[i];
-      const auto m = std::size_t(start.material[i]);
-      const constitutive::ElasticModuli e = models_[m]->moduli(
-          start.stress[i],
-          std::span<const double>(start.internal.of(i), models_[m]->internal_variables().size()));
-      block_modulus_[i] = block_modulus(e);  // as the explicit solver's
+  Stabilisation& total = stabilisation_[0];
+  Stabilisation& per_increment = stabilisation_[1];
+  total.coefficient = discretisation_.options().stiffness_stabilisation;
+  per_increment.coefficient = increment_stabilisation;
+  for (Stabilisation& w : stabilisation_) {
+    if (w.coefficient > 0.0) {
+      w.reference.resize(n);
+      w.modulus.resize(n);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(total.coefficient > 0.0) && !(per_increment.coefficient > 0.0)) break;
+    const auto m = std::size_t(start.material[i]);
+    const constitutive::ElasticModuli e = models_[m]->moduli(
+        start.stress[i],
+        std::span<const double>(start.internal.of(i), models_[m]->internal_variables().size()));
+    if (total.coefficient > 0.0) {
+      total.reference[i] = start.position[i] - start.displacement[i];
+      total.modulus[i] = block_modulus(e);  // as the explicit solver's
+    }
+    if (per_increment.coefficient > 0.0) {
+      // 2 G, not the P-wave modulus: at nu near 1/2 the latter would penalise the volumetric
+      // part of the deviation some 80 times harder, which is the locking nodal integration avoids
+      per_increment.reference[i] = start.position[i];
+      per_increment.modulus[i] = 2.0 * std::abs(e.shear);
     }
   }
 }
@@ -176,14 +191,15 @@ bool IncrementOperator::evaluate(const std::vector<Vec2>& u) {
   ScopedTimer t(timers, Phase::assembly);
   // papers/004 iSPFEM: F_int = sum_k B_L^(k)T sigma_k A^(k) on the current configuration
   internal_forces(discretisation_.cells(), stress_, internal_force_);
-  const double s = discretisation_.options().stiffness_stabilisation;
-  if (s > 0.0 && !discretisation_.mesh().triangles.empty()) {
-    // spfem/stiffness_stabilisation.hpp: the force -dW/dx resists like an internal force
-    stiffness_stabilisation_forces(discretisation_.mesh().triangles,
-                                   discretisation_.cells().node_triangles, reference_position_,
-                                   position_, block_modulus_, s, stabilisation_scratch_,
-                                   stabilisation_force_);
-    for (std::size_t i = 0; i < n; ++i) internal_force_[i] -= stabilisation_force_[i];
+  if (!discretisation_.mesh().triangles.empty()) {
+    for (Stabilisation& w : stabilisation_) {
+      if (!(w.coefficient > 0.0)) continue;
+      // spfem/stiffness_stabilisation.hpp: the force -dW/dx resists like an internal force
+      stiffness_stabilisation_forces(discretisation_.mesh().triangles,
+                                     discretisation_.cells().node_triangles, w.reference, position_,
+                                     w.modulus, w.coefficient, w.scratch, w.force);
+      for (std::size_t i = 0; i < n; ++i) internal_force_[i] -= w.force[i];
+    }
   }
   return true;
 }
@@ -214,8 +230,7 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
     Mat2* out = blocks_.blocks(omp_get_thread_num());
     std::vector<Eigen::Matrix<double, 3, 2>> q;
     std::vector<double> hessian;
-    const bool stabilised = discretisation_.options().stiffness_stabilisation > 0.0 &&
-                            !discretisation_.mesh().triangles.empty();
+    const bool meshed = !discretisation_.mesh().triangles.empty();
 #pragma omp for schedule(static)
     for (std::size_t k = 0; k < n; ++k) {
       if (!(b0.area[k] > 0.0)) continue;
@@ -239,9 +254,10 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
           out[pair[i * length + j]].noalias() += left * q[std::size_t(j)];
         }
       }
-      if (stabilised) {
+      for (const Stabilisation& w : stabilisation_) {
+        if (!(w.coefficient > 0.0) || !meshed) continue;
         // d^2 W / dx^2 of node k's stabilisation terms (exact: W is quadratic in x)
-        stiffness_stabilisation_hessian(triangles, cells.node_triangles, stabilisation_scratch_, k,
+        stiffness_stabilisation_hessian(triangles, cells.node_triangles, w.scratch, k,
                                         &cells.column[std::size_t(begin)], length, hessian);
         for (std::int32_t i = 0; i < length * length; ++i) {
           out[pair[i]].diagonal().array() += hessian[std::size_t(i)];

@@ -15,6 +15,7 @@
 // w_ke = SmoothingCells::triangle_weight). Like MFEM's Operator (Mult / GetGradient) it knows
 // nothing of Newton; ImplicitSolver drives it.
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -37,10 +38,11 @@ class IncrementOperator {
   /// cells `discretisation` holds now (built at start.position); `wall_increment` is the
   /// displacement of the wall strips' wall points over the increment (2 per strip edge: a', b').
   /// `models` by material index. The discretisation is refilled at every evaluation.
+  /// `increment_stabilisation`: spfem.implicit.increment_stabilisation (0: off).
   IncrementOperator(NodalDiscretisation& discretisation,
                     const std::vector<std::unique_ptr<constitutive::Model>>& models,
                     const Particles& start, std::vector<Vec2> wall_increment,
-                    Timers* timers = nullptr);
+                    Timers* timers = nullptr, double increment_stabilisation = 0.0);
 
   /// Stress and internal force at the nodal displacement `u`. Returns false when the model
   /// could not integrate (a non-finite stress).
@@ -82,12 +84,22 @@ class IncrementOperator {
   std::vector<std::vector<Vec2>> row_derivative_;
   Timers own_timers_;         // where the phases go when the caller passes no Timers
   Timers* timers_ = nullptr;  // mesh (refill), constitutive, assembly
-  // Stiffness stabilisation (spfem.stiffness_stabilisation > 0): W on the nodes' initial
-  // positions, M_e from the moduli at the increment's start, its force added to F_int
-  std::vector<Vec2> reference_position_;
-  std::vector<double> block_modulus_;
-  std::vector<Vec2> stabilisation_force_;
-  StiffnessStabilisationScratch stabilisation_scratch_;
+  // The stabilisation energies W of spfem/stiffness_stabilisation.hpp, their forces added to
+  // F_int and their (exact, constant) Hessians to the tangent:
+  //   total: spfem.stiffness_stabilisation, W on the nodes' initial positions with the P-wave
+  //     modulus (as the explicit solver's);
+  //   increment: spfem.implicit.increment_stabilisation, W on the increment's start with 2 G,
+  //     so it holds no stress from one increment to the next (a rate-like resistance of the
+  //     increment's hourglass part).
+  // M_e from the moduli at the increment's start.
+  struct Stabilisation {
+    double coefficient = 0.0;
+    std::vector<Vec2> reference;
+    std::vector<double> modulus;
+    std::vector<Vec2> force;
+    StiffnessStabilisationScratch scratch;
+  };
+  std::array<Stabilisation, 2> stabilisation_;
 };
 
 }  // namespace duet::spfem

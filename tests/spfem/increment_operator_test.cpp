@@ -65,7 +65,7 @@ std::vector<Vec2> displacement(const Particles& p, const Mat2& g, double noise, 
 /// Relative Frobenius distance between the assembled tangent and the central-difference Jacobian
 /// of F_int, every dof free.
 double tangent_error(Case& c, bool boundary_layer, double stiffness_stabilisation = 0.0,
-                     std::vector<NodeBoundary> walls = {}) {
+                     std::vector<NodeBoundary> walls = {}, double increment_stabilisation = 0.0) {
   std::vector<std::unique_ptr<constitutive::Model>> models;
   models.push_back(std::move(c.model));
   duet::SpfemOptions options;
@@ -78,7 +78,8 @@ double tangent_error(Case& c, bool boundary_layer, double stiffness_stabilisatio
   const std::size_t n = c.start.size();
   const DofMap dofs = eliminate(n, {}, std::vector<std::uint8_t>(n, 0));
   IncrementOperator op(discretisation, models, c.start,
-                       std::vector<Vec2>(2 * discretisation.wall_strips().edges.size()));
+                       std::vector<Vec2>(2 * discretisation.wall_strips().edges.size()), nullptr,
+                       increment_stabilisation);
   EXPECT_TRUE(op.evaluate(c.u));
   op.assemble_tangent(dofs);
   const Eigen::MatrixXd k = Eigen::MatrixXd(op.tangent());
@@ -141,6 +142,54 @@ TEST(IncrementOperator, StiffnessStabilisationHessianMatchesFiniteDifferenceJaco
   const double error = tangent_error(c, true, 0.5);
   std::printf("elastic, layer, stiffness stabilisation 0.5: %.2e\n", error);
   EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, IncrementStabilisationHessianMatchesFiniteDifferenceJacobian) {
+  // Both energies at once: the total one on the initial positions, the increment's on x_n
+  Case c = elastic_case();
+  for (Vec2& x : c.start.displacement) x = Vec2(0.03, -0.02);  // x_n differs from the initial
+  const double error = tangent_error(c, true, 0.5, {}, 2.0);
+  std::printf("elastic, layer, stiffness 0.5 and increment stabilisation 2: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, IncrementStabilisationResistsOnlyTheIncrementsHourglassPart) {
+  // Anchored to the increment's start, the energy vanishes for an affine increment however the
+  // body got there (so it holds no stress from earlier increments), and it resists a
+  // non-affine one: the work of its force over the increment is 2 W > 0.
+  Case c = elastic_case();
+  for (Vec2& x : c.start.displacement) x = Vec2(0.03, -0.02);
+  std::vector<std::unique_ptr<constitutive::Model>> models;
+  models.push_back(std::move(c.model));
+  duet::SpfemOptions options;
+  NodalDiscretisation discretisation(options, kSpacing, {});
+  discretisation.initialise(c.start.position);
+  discretisation.place_boundaries(0.0, false);
+  discretisation.update(c.start.position);
+  const auto force_work = [&](double s, const std::vector<Vec2>& u) {
+    // both built before either evaluates: an evaluation refills the discretisation's cells
+    IncrementOperator op(discretisation, models, c.start, {}, nullptr, s);
+    IncrementOperator plain(discretisation, models, c.start, {}, nullptr, 0.0);
+    EXPECT_TRUE(op.evaluate(u));
+    const std::vector<Vec2> f = op.internal_force();
+    EXPECT_TRUE(plain.evaluate(u));
+    double work = 0.0;
+    double largest = 0.0;
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      const Vec2 extra = f[i] - plain.internal_force()[i];
+      work += extra.dot(u[i]);
+      largest = std::max(largest, extra.norm());
+    }
+    std::printf("increment stabilisation 2: work %.3e, largest force %.3e\n", work, largest);
+    return std::pair{work, largest};
+  };
+  const Mat2 g = (Mat2() << 0.01, 0.03, -0.02, 0.005).finished();
+  const std::vector<Vec2> affine = displacement(c.start, g, 0.0, 11);
+  EXPECT_LT(force_work(2.0, affine).second, 1e-10);  // forces of order 0.1 N/m when rough
+  const std::vector<Vec2> rough = displacement(c.start, g, 2e-3, 11);
+  const auto [work, largest] = force_work(2.0, rough);
+  EXPECT_GT(work, 0.0);
+  EXPECT_GT(largest, 1e-3);
 }
 
 TEST(IncrementOperator, TangentWithWallStripsMatchesFiniteDifferenceJacobian) {
