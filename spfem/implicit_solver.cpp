@@ -21,6 +21,10 @@ namespace {
 // Newton step halvings a line search may take before it accepts the step anyway
 constexpr int kLineSearchHalvings = 4;
 
+// How far an iterate's reaction may grow past the attempt's first before it stops scaling the
+// residual (ImplicitSolver::solve_increment)
+constexpr double kReactionGrowth = 10.0;
+
 std::string format_residuals(const std::vector<double>& r) {
   std::ostringstream out;
   out.precision(3);
@@ -323,7 +327,13 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
     Eigen::VectorXd residual(static_cast<Eigen::Index>(dofs.n_free()));
     // R = F_ext - F_int on the free dofs, relative to the external load or, when the reaction
-    // is larger (a prescribed motion and no load: the footing, the cavity), to the reaction
+    // is larger (a prescribed motion and no load: the footing, the cavity), to the reaction.
+    // The reaction counts at most kReactionGrowth times the larger of the load and the reaction
+    // at the attempt's first evaluation (the prescribed motion on a body at rest, or the guess):
+    // an iterate that flings a node far off has an enormous reaction, against which any residual
+    // looks small (the smooth footing "converged" with a cell area of -3e8 m^2 and reactions of
+    // 1e20 N, and the active set let go of three of its nodes on them).
+    double reaction_cap = -1.0;
     const auto relative_residual = [&]() {
       const std::vector<Vec2>& f_int = op.internal_force();
       double reaction = 0.0;
@@ -339,7 +349,11 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
         }
         if (!held[i]) reaction += r.squaredNorm();
       }
-      const double scale = std::max({external_norm, std::sqrt(reaction), std::sqrt(inertia_norm)});
+      if (reaction_cap < 0.0) {
+        reaction_cap = kReactionGrowth * std::max(external_norm, std::sqrt(reaction));
+      }
+      const double scale = std::max(
+          {external_norm, std::min(std::sqrt(reaction), reaction_cap), std::sqrt(inertia_norm)});
       const double norm = residual.norm();
       return scale > 0.0 ? norm / scale : norm;
     };
