@@ -328,8 +328,9 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     Eigen::VectorXd residual(static_cast<Eigen::Index>(dofs.n_free()));
     // R = F_ext - F_int on the free dofs, relative to the external load or, when the reaction
     // is larger (a prescribed motion and no load: the footing, the cavity), to the reaction.
-    // The reaction counts at most kReactionGrowth times the larger of the load and the reaction
-    // at the attempt's first evaluation (the prescribed motion on a body at rest, or the guess):
+    // The reaction (and the inertia force) counts at most kReactionGrowth times the largest of the
+    // load, the reaction and the inertia force at the attempt's first evaluation (the prescribed
+    // motion on a body at rest, or the guess):
     // an iterate that flings a node far off has an enormous reaction, against which any residual
     // looks small (the smooth footing "converged" with a cell area of -3e8 m^2 and reactions of
     // 1e20 N, and the active set let go of three of its nodes on them).
@@ -350,10 +351,12 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
         if (!held[i]) reaction += r.squaredNorm();
       }
       if (reaction_cap < 0.0) {
-        reaction_cap = kReactionGrowth * std::max(external_norm, std::sqrt(reaction));
+        reaction_cap = kReactionGrowth *
+                       std::max({external_norm, std::sqrt(reaction), std::sqrt(inertia_norm)});
       }
-      const double scale = std::max(
-          {external_norm, std::min(std::sqrt(reaction), reaction_cap), std::sqrt(inertia_norm)});
+      // (the inertia force of a flung node is as enormous: capped alike)
+      const double scale = std::max({external_norm, std::min(std::sqrt(reaction), reaction_cap),
+                                     std::min(std::sqrt(inertia_norm), reaction_cap)});
       const double norm = residual.norm();
       return scale > 0.0 ? norm / scale : norm;
     };
