@@ -691,7 +691,10 @@ Json ImplicitSolver::diagnostics() const {
   newton["snap_worst_area_ratio"] = c.snaps > 0 ? Json(c.snap_worst_ratio) : Json();
   newton["tolerance"] = setup_.implicit.tolerance;
   newton["displacement_tolerance"] = setup_.implicit.displacement_tolerance;
-  newton["residual_scale"] = "max(|F_ext|, |reaction|) over the increment's iterate";
+  newton["residual_scale"] =
+      "max(|F_ext|, |reaction|, |inertia|) of the iterate, the reaction and the inertia at most "
+      "10 times the largest of the three at the attempt's first evaluation";
+  newton["increment_stabilisation"] = setup_.implicit.increment_stabilisation;
   Json history = Json::array();
   for (const std::vector<double>& r : c.residual_history) history.push_back(Json::array(r));
   newton["residual_history"] = history;

@@ -202,6 +202,7 @@ TEST(ImplicitFootingBenchmark, IncrementStabilisationKeepsTheDeepFootingsLoadRis
       q01, bearing_at(without, 0.1), q05, bearing_at(without, 0.5), 100.0 * largest_drop(with),
       100.0 * largest_drop(without), newton.find("iterations")->number(),
       without.metrics.find("diagnostics")->find("newton")->find("iterations")->number());
+  EXPECT_EQ(newton.find("increment_stabilisation")->number(), 0.1);  // said in metrics.json
   EXPECT_EQ(newton.find("snaps")->number(), 0.0);
   EXPECT_LT(largest_drop(with), 0.1);
   EXPECT_GT(largest_drop(without), 0.1);  // the defect the stabilisation answers is still there
