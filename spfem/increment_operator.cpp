@@ -70,28 +70,29 @@ IncrementOperator::IncrementOperator(
   Stabilisation& per_increment = stabilisation_[1];
   total.coefficient = discretisation_.options().stiffness_stabilisation;
   per_increment.coefficient = increment_stabilisation;
-  for (Stabilisation& w : stabilisation_) {
-    if (w.coefficient > 0.0) {
-      w.reference.resize(n);
-      w.modulus.resize(n);
-    }
+  const bool total_on = total.coefficient > 0.0;
+  const bool increment_on = per_increment.coefficient > 0.0;
+  if (!total_on && !increment_on) return;
+  if (total_on) {
+    total.reference.resize(n);
+    total.modulus.resize(n);
+  }
+  if (increment_on) {
+    per_increment.reference = start.position;
+    per_increment.modulus.resize(n);
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (!(total.coefficient > 0.0) && !(per_increment.coefficient > 0.0)) break;
     const auto m = std::size_t(start.material[i]);
     const constitutive::ElasticModuli e = models_[m]->moduli(
         start.stress[i],
         std::span<const double>(start.internal.of(i), models_[m]->internal_variables().size()));
-    if (total.coefficient > 0.0) {
+    if (total_on) {
       total.reference[i] = start.position[i] - start.displacement[i];
       total.modulus[i] = block_modulus(e);  // as the explicit solver's
     }
-    if (per_increment.coefficient > 0.0) {
-      // 2 G, not the P-wave modulus: at nu near 1/2 the latter would penalise the volumetric
-      // part of the deviation some 80 times harder, which is the locking nodal integration avoids
-      per_increment.reference[i] = start.position[i];
-      per_increment.modulus[i] = 2.0 * std::abs(e.shear);
-    }
+    // 2 G, not the P-wave modulus: at nu near 1/2 the latter would penalise the volumetric part
+    // of the deviation some 80 times harder, which is the locking nodal integration avoids
+    if (increment_on) per_increment.modulus[i] = 2.0 * std::abs(e.shear);
   }
 }
 

@@ -21,18 +21,37 @@
 namespace duet {
 namespace {
 
+/// A run of `scene` through ispfem in a temporary folder, read back and the folder removed.
+struct IspfemRun {
+  RunSummary summary;
+  Json metrics;
+  std::vector<double> settlement;  // the footing's displacement y (m, downwards positive)
+  std::vector<double> load;        // series load_settlement as the scene scales it
+};
+
+IspfemRun run_ispfem(const Scene& scene, const std::string& tag) {
+  MethodRegistry methods;
+  spfem::register_ispfem(methods);
+  const auto dir = (std::filesystem::temp_directory_path() /
+                    ("duet-ispfem-" + tag + "-" + std::to_string(::getpid())))
+                       .string();
+  std::filesystem::remove_all(dir);
+  IspfemRun out;
+  out.summary = run_scene(scene, methods.find("ispfem"), RunOptions{dir, false});
+  out.metrics = read_json(dir + "/metrics.json");
+  out.settlement = read_series(dir + "/run.h5", "settlement");
+  out.load = read_series(dir + "/run.h5", "load_settlement");
+  for (double& w : out.settlement) w = -w;
+  std::filesystem::remove_all(dir);
+  return out;
+}
+
 TEST(ImplicitFootingBenchmark, BearingPressureWithinTenPercentOfPrandtlAtCoarseSpacing) {
   // Arrange
   const Scene scene = load_scene(std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing.toml",
                                  {"spacing=0.25"});
-  MethodRegistry methods;
-  spfem::register_ispfem(methods);
-  const auto dir = (std::filesystem::temp_directory_path() /
-                    ("duet-ispfem-footing-" + std::to_string(::getpid())))
-                       .string();
-  std::filesystem::remove_all(dir);
   // Act
-  const RunSummary run = run_scene(scene, methods.find("ispfem"), RunOptions{dir, false});
+  const RunSummary run = run_ispfem(scene, "footing").summary;
   // Assert: Prandtl q_u / c_u = 2 + pi = 5.1416 (the scene's reference)
   ASSERT_TRUE(run.completed()) << run.failure_reason << " at t = " << run.failure_time;
   const Accuracy& bearing = run.accuracy.at("bearing");
@@ -40,7 +59,6 @@ TEST(ImplicitFootingBenchmark, BearingPressureWithinTenPercentOfPrandtlAtCoarseS
               bearing.reference, 100.0 * (bearing.value - bearing.reference) / bearing.reference,
               run.wall_seconds);
   EXPECT_LT(bearing.rel_error, 0.1);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(ImplicitFootingBenchmark, NewtonConvergesQuadraticallyBeforeFullPlasticity) {
@@ -77,12 +95,6 @@ TEST(ImplicitFootingBenchmark, NewtonConvergesQuadraticallyBeforeFullPlasticity)
   }
 }
 
-struct DeepFooting {
-  Json metrics;
-  std::vector<double> settlement;  // w (m, downwards), B = 1 m
-  std::vector<double> bearing;     // q / s_u
-};
-
 TEST(ImplicitFootingBenchmark, ASmoothFootingPushedDownKeepsItsNodesAndItsLoad) {
   // A smooth footing pushed into weightless soil presses on every node under it: none may be let
   // go and the load may not fall. At dp 0.1 with 0.04 s increments, Newton once "converged" at
@@ -92,17 +104,11 @@ TEST(ImplicitFootingBenchmark, ASmoothFootingPushedDownKeepsItsNodesAndItsLoad) 
   const Scene scene = load_scene(
       std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing.toml",
       {"rigid_body.footing.surface=smooth", "time.end_time=0.9", "spfem.implicit.increment=0.04"});
-  MethodRegistry methods;
-  spfem::register_ispfem(methods);
-  const auto dir = (std::filesystem::temp_directory_path() /
-                    ("duet-ispfem-smooth-" + std::to_string(::getpid())))
-                       .string();
-  std::filesystem::remove_all(dir);
-  const RunSummary run = run_scene(scene, methods.find("ispfem"), RunOptions{dir, false});
-  ASSERT_TRUE(run.completed()) << run.failure_reason << " at t = " << run.failure_time;
-  const Json metrics = read_json(dir + "/metrics.json");
-  const std::vector<double> load = read_series(dir + "/run.h5", "load_settlement");
-  std::filesystem::remove_all(dir);
+  const IspfemRun run = run_ispfem(scene, "smooth");
+  ASSERT_TRUE(run.summary.completed())
+      << run.summary.failure_reason << " at t = " << run.summary.failure_time;
+  const Json& metrics = run.metrics;
+  const std::vector<double>& load = run.load;
   double highest = 0.0;
   double worst = 1.0;
   for (double q : load) {
@@ -116,46 +122,33 @@ TEST(ImplicitFootingBenchmark, ASmoothFootingPushedDownKeepsItsNodesAndItsLoad) 
   EXPECT_GT(worst, 0.98);
 }
 
-/// footing-deep.toml (B = 1 m, to w/B 1) through ispfem at dp 0.25 and to t = `end` s, with
-/// spfem.implicit.snap = `snap` and increment_stabilisation = `stabilisation`.
-DeepFooting deep_footing(const std::string& snap, double end, double stabilisation) {
+/// footing-deep.toml (B = 1 m, to w/B 1; load in q / s_u) through ispfem at dp 0.25 and to
+/// t = `end` s, with spfem.implicit.snap = `snap` and increment_stabilisation = `stabilisation`.
+IspfemRun deep_footing(const std::string& snap, double end, double stabilisation) {
   const Scene scene =
       load_scene(std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing-deep.toml",
                  {"spacing=0.25", "time.end_time=" + std::to_string(end),
                   "spfem.implicit.increment=0.05",  // the whole run's: 10 s / 200
                   "spfem.implicit.snap=" + snap,
                   "spfem.implicit.increment_stabilisation=" + std::to_string(stabilisation)});
-  MethodRegistry methods;
-  spfem::register_ispfem(methods);
-  const auto dir = (std::filesystem::temp_directory_path() /
-                    ("duet-ispfem-snap-" + snap + "-" + std::to_string(::getpid())))
-                       .string();
-  std::filesystem::remove_all(dir);
-  run_scene(scene, methods.find("ispfem"), RunOptions{dir, false});
-  DeepFooting out;
-  out.metrics = read_json(dir + "/metrics.json");
-  out.settlement = read_series(dir + "/run.h5", "settlement");
-  out.bearing = read_series(dir + "/run.h5", "load_settlement");
-  for (double& w : out.settlement) w = -w;
-  std::filesystem::remove_all(dir);
-  return out;
+  return run_ispfem(scene, "snap-" + snap);
 }
 
 /// q / s_u at the recorded settlement nearest `w`.
-double bearing_at(const DeepFooting& run, double w) {
+double bearing_at(const IspfemRun& run, double w) {
   std::size_t best = 0;
   for (std::size_t i = 0; i < run.settlement.size(); ++i) {
     if (std::abs(run.settlement[i] - w) < std::abs(run.settlement[best] - w)) best = i;
   }
-  return run.bearing[best];
+  return run.load[best];
 }
 
 /// The largest fall of q from one record to the next, relative to the earlier value.
-double largest_drop(const DeepFooting& run) {
+double largest_drop(const IspfemRun& run) {
   double drop = 0.0;
-  for (std::size_t i = 1; i < run.bearing.size(); ++i) {
-    if (run.bearing[i - 1] > 0.0) {
-      drop = std::max(drop, (run.bearing[i - 1] - run.bearing[i]) / run.bearing[i - 1]);
+  for (std::size_t i = 1; i < run.load.size(); ++i) {
+    if (run.load[i - 1] > 0.0) {
+      drop = std::max(drop, (run.load[i - 1] - run.load[i]) / run.load[i - 1]);
     }
   }
   return drop;
@@ -190,8 +183,8 @@ TEST(ImplicitFootingBenchmark, IncrementStabilisationKeepsTheDeepFootingsLoadRis
   // increment. The scene's increment stabilisation (0.1) keeps the curve rising to w/B 0.6 at
   // dp 0.25 (measured: 4.85 at w/B 0.1, largest fall 3.4 %, 479 iterations; without it 4.40,
   // a fall of 94 % before w/B 0.6, 801 iterations).
-  const DeepFooting without = deep_footing("warn", 6.0, 0.0);
-  const DeepFooting with = deep_footing("warn", 6.0, 0.1);
+  const IspfemRun without = deep_footing("warn", 6.0, 0.0);
+  const IspfemRun with = deep_footing("warn", 6.0, 0.1);
   ASSERT_EQ(with.metrics.find("status")->string(), "completed");
   const Json& newton = *with.metrics.find("diagnostics")->find("newton");
   const double q01 = bearing_at(with, 0.1);
