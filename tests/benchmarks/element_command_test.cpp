@@ -2,6 +2,7 @@
 // Closed form (Hooke, oedometer): sigma_axial = sigma_0 + E(1-nu)/((1+nu)(1-2nu)) eps_axial.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -48,9 +49,12 @@ Result run_duet(const std::string& arguments, const fs::path& dir) {
   return r;
 }
 
-/// The command exists once main.cpp registers it (the placeholder main says so).
+/// The command exists once main.cpp registers it (the placeholder main says so). Every test's
+/// set-up asks, and ctest runs tests as parallel processes: each asks in a folder of its own.
 bool element_command_wired() {
-  const Result r = run_duet("element --help", scratch("help"));
+  const fs::path dir = scratch("help-" + std::to_string(::getpid()));
+  const Result r = run_duet("element --help", dir);
+  fs::remove_all(dir);
   return r.out.find("under construction") == std::string::npos;
 }
 

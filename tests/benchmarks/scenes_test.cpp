@@ -98,7 +98,8 @@ TEST_P(BadScene, DuetRunExitsWithStatus2AndTheExpectedMessage) {
 
   const fs::path err =
       fs::temp_directory_path() / ("duet-bad-scene-" + GetParam().stem().string() + ".stderr");
-  const fs::path out_dir = fs::temp_directory_path() / "duet-bad-scene-out";
+  const fs::path out_dir =
+      fs::temp_directory_path() / ("duet-bad-scene-out-" + GetParam().stem().string());
   const std::string command = "'" + std::string(DUET_BINARY) + "' run '" + GetParam().string() +
                               "' --method sph --out '" + out_dir.string() + "' > /dev/null 2> '" +
                               err.string() + "'";
