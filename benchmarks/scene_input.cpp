@@ -7,6 +7,7 @@
 
 #include "benchmarks/reports.hpp"
 #include "common/input_error.hpp"
+#include "common/lattice.hpp"
 #include "constitutive/registry.hpp"
 
 namespace duet {
@@ -30,7 +31,8 @@ MaterialCheck model_material_check() {
 
 namespace {
 
-/// Legal values in a likely wrong unit (phi = 0.5, E = 10): said on the terminal, not refused.
+/// Legal values in a likely wrong unit (phi = 0.5, E = 10), and rectangles the lattice does not
+/// fit (common/lattice.hpp): said on the terminal, not refused.
 /// Once per message and process: compare and stability load a scene once per run.
 void warn_implausible(const Scene& scene) {
   static std::set<std::string> said;
@@ -40,6 +42,10 @@ void warn_implausible(const Scene& scene) {
       const std::string line = "duet: warning: " + scene.path + ": " + w;
       if (said.insert(line).second) std::cerr << line << '\n';
     }
+  }
+  for (const std::string& w : lattice_misfits(scene)) {
+    const std::string line = "duet: warning: " + scene.path + ": " + w;
+    if (said.insert(line).second) std::cerr << line << '\n';
   }
 }
 

@@ -8,7 +8,9 @@
 #include <numbers>
 #include <numeric>
 #include <set>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -60,6 +62,37 @@ TEST(Lattice, RectangleCountMassAndVolumeAreExact) {
   for (std::size_t i = 0; i < p.size(); ++i) EXPECT_EQ(p.volume[i], 0.002 * 0.002);
   EXPECT_NEAR(sum(p.volume), 0.02, summation_bound(p.size(), 0.02));
   EXPECT_NEAR(sum(p.mass), 1850.0 * 0.02, summation_bound(p.size(), 1850.0 * 0.02));
+}
+
+TEST(Lattice, ARectangleTheSpacingDoesNotDivideIsNamedWithWhatTheLatticeSamples) {
+  // The column 0.2 x 0.1 m: 2 mm divides both sides; 3.5 mm (57.14 x 28.57 spacings) keeps 57
+  // columns (0.1995 m, 0.5 mm short of max x) and 29 rows (0.1015 m, 1.5 mm beyond max y).
+  EXPECT_TRUE(lattice_misfits(scene_with(0.002, 1850.0, {rectangle(0.0, 0.0, 0.2, 0.1)})).empty());
+  const Scene column = scene_with(0.0035, 1850.0, {rectangle(0.0, 0.0, 0.2, 0.1)});
+  const std::vector<std::string> lines = lattice_misfits(column);
+  ASSERT_EQ(lines.size(), 1u);
+  const std::string& line = lines[0];
+  EXPECT_NE(line.find("body.body0"), std::string::npos) << line;
+  EXPECT_NE(line.find("last column ends 0.0005 m short of max x"), std::string::npos) << line;
+  EXPECT_NE(line.find("last row ends 0.0015 m beyond max y"), std::string::npos) << line;
+  EXPECT_NE(line.find("0.1995 x 0.1015 m"), std::string::npos) << line;
+  // What the lattice samples is what the line says: 57 x 29 particles.
+  const Particles p = sample_bodies(column);
+  EXPECT_EQ(p.size(), 57u * 29u);
+  double top = 0.0;
+  for (const Vec2& x : p.position) top = std::max(top, x.y());
+  EXPECT_NEAR(top + 0.5 * 0.0035, 0.1015, 1e-12);
+  // A 7.5 m block at dp 0.2 (37.5 spacings): its top row ends a half spacing short of the top.
+  const std::vector<std::string> block =
+      lattice_misfits(scene_with(0.2, 1800.0, {rectangle(0.0, -2.5, 7.5, 5.0)}));
+  ASSERT_EQ(block.size(), 1u);
+  EXPECT_NE(block[0].find("last column ends 0.1 m short of max x"), std::string::npos) << block[0];
+  EXPECT_NE(block[0].find("last row ends 0.1 m short of max y = 5"), std::string::npos) << block[0];
+  // Sides of exactly k dp that floating point misses by an ulp, and polygons, are not named.
+  EXPECT_TRUE(lattice_misfits(scene_with(0.1, 1800.0, {rectangle(0.0, 0.0, 0.3, 0.7)})).empty());
+  Scene polygon = scene_with(0.0035, 1850.0, {rectangle(0.0, 0.0, 0.2, 0.1)});
+  polygon.bodies[0].shape = ShapeKind::polygon;
+  EXPECT_TRUE(lattice_misfits(polygon).empty());
 }
 
 TEST(Lattice, ParticlesSitAtCellCentresInsideTheBody) {
