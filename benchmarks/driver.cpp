@@ -1,6 +1,8 @@
 #include "benchmarks/driver.hpp"
 
 #include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -9,7 +11,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "benchmarks/git_commit.hpp"
 #include "benchmarks/material_points.hpp"
@@ -189,6 +194,16 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     return inertial ? reaction_mean.take(solver->reactions()) : solver->reactions();
   };
 
+  // The largest |F| each wall and rigid body carried since the run began: a moving one that
+  // carried none never touched the material (run_warnings).
+  std::vector<double> largest_reaction;
+  const auto note_reactions = [&](const std::vector<Reaction>& reactions) {
+    largest_reaction.resize(reactions.size(), 0.0);
+    for (std::size_t k = 0; k < reactions.size(); ++k) {
+      largest_reaction[k] = std::max(largest_reaction[k], reactions[k].force.norm());
+    }
+  };
+
   // All the run carries from one step to the next, for a frame's /state.
   const auto state_now = [&] {
     StateBag state;
@@ -204,6 +219,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     put(state, "driver.internal", particles.internal.values);
     measures.save_state(state);
     reaction_mean.save_state(state);
+    put(state, "driver.reaction_largest", largest_reaction);
     budget.save_state(state);
     solver->save_state(state);
     return state;
@@ -251,6 +267,10 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       wall_before = scalar(state, "driver.wall_seconds");
       measures.restore_state(state);
       reaction_mean.restore_state(state);
+      // absent from frames written before it was kept: the record starts afresh
+      if (state.count("driver.reaction_largest") != 0) {
+        get(state, "driver.reaction_largest", largest_reaction);
+      }
       budget.restore_state(state);
       solver->restore_state(state, particles);
       solver->restart_point();
@@ -275,6 +295,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       ++steps;
       energy.record(time, kinetic_energy(particles));
       const std::vector<Reaction> reactions = solver->reactions();
+      note_reactions(reactions);
       if (inertial) reaction_mean.add(reactions, dt);
       budget.record(time, particles, reactions);
       budget.observe(energy.end);
@@ -358,10 +379,18 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   metrics["diagnostics"] = solver->diagnostics();
   metrics["kinetic_energy"] = energy.to_json();
   metrics["energy_input"] = budget.to_json();
+  std::map<std::string, double> largest_by_name;
+  {
+    const std::vector<Reaction> names = solver->reactions();
+    for (std::size_t k = 0; k < names.size() && k < largest_reaction.size(); ++k) {
+      largest_by_name[names[k].name] = largest_reaction[k];
+    }
+  }
   const std::vector<std::string> warnings =
-      status == "completed" ? run_warnings(scene, solver->inertial(), energy, budget, time,
-                                           metrics["diagnostics"], particles.size())
-                            : std::vector<std::string>{};
+      status == "completed"
+          ? run_warnings(scene, solver->inertial(), energy, budget, time, metrics["diagnostics"],
+                         particles.size(), largest_by_name)
+          : std::vector<std::string>{};
   Json warning_list = Json::array();
   for (const std::string& w : warnings) {
     warning_list.push_back(w);

@@ -123,12 +123,44 @@ void add_diagnostic_warnings(const Scene& scene, const Json& diagnostics, std::s
   }
 }
 
+bool ever_moves(const Schedule& schedule) {
+  for (const Knot& k : schedule) {
+    if (k.value != Vec2::Zero()) return true;
+  }
+  return false;
+}
+
+void add_untouched_boundary_warnings(const Scene& scene,
+                                     const std::map<std::string, double>& largest_reaction,
+                                     std::vector<std::string>& out) {
+  const auto untouched = [&](const std::string& name) {
+    const auto it = largest_reaction.find(name);
+    return it != largest_reaction.end() && it->second == 0.0;
+  };
+  for (const RigidBody& rb : scene.rigid_bodies) {
+    if (ever_moves(rb.velocity) && untouched(rb.name)) {
+      out.push_back("rigid_body." + rb.name +
+                    " moved but carried no force at any step: it never touched the material, "
+                    "and its reaction measures read 0. Check where it starts against what it "
+                    "should push (a lattice's outer row lies dp/2 inside the drawn edge)");
+    }
+  }
+  for (const Wall& w : scene.walls) {
+    if ((w.radial ? ever_moves(w.radial_velocity) : ever_moves(w.velocity)) && untouched(w.name)) {
+      out.push_back("wall." + w.name +
+                    " moved but carried no force at any step: it never touched the material, "
+                    "and its reaction measures read 0");
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> run_warnings(const Scene& scene, bool inertial,
                                       const KineticEnergyRecord& energy, const EnergyBudget& budget,
                                       double end_time, const Json& diagnostics,
-                                      std::size_t particles) {
+                                      std::size_t particles,
+                                      const std::map<std::string, double>& largest_reaction) {
   std::vector<std::string> out;
   char text[400];
   const bool settling = inertial && scene.gravity != Vec2::Zero() && !driven_at(scene, end_time);
@@ -151,6 +183,7 @@ std::vector<std::string> run_warnings(const Scene& scene, bool inertial,
                   scene.checks.kinetic_energy_factor);
     out.emplace_back(text);
   }
+  add_untouched_boundary_warnings(scene, largest_reaction, out);
   add_diagnostic_warnings(scene, diagnostics, particles, out);
   return out;
 }

@@ -2,6 +2,7 @@
 // What a finished run's own figures say that a user must not miss, each with what to try: said on
 // the terminal at the end of the run and listed under `warnings` in metrics.json.
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,10 @@ namespace duet {
 ///   energy put in;
 /// - close to the energy check: the kinetic energy reached more than 1.2 times the energy put in
 ///   (the check fails a run at kinetic_energy_factor, 2 by default).
+/// - a moving boundary that never touched: a rigid body or wall with a prescribed motion whose
+///   reaction was zero at every step (`largest_reaction`: the largest |F| of each named reaction
+///   over the run); its measures read 0 and the run scored nothing (a footing that starts above
+///   the soil's top row: common/lattice.hpp lattice_misfits).
 /// From the method's diagnostics (the keys named), when it reports them:
 /// - penetrations (penetrations_max > 0): particles inside a wall or rigid body;
 /// - isolated nodes (isolated_nodes_max > 5 % of the particles): nodes in no triangle of the
@@ -29,6 +34,7 @@ namespace duet {
 std::vector<std::string> run_warnings(const Scene& scene, bool inertial,
                                       const KineticEnergyRecord& energy, const EnergyBudget& budget,
                                       double end_time, const Json& diagnostics,
-                                      std::size_t particles);
+                                      std::size_t particles,
+                                      const std::map<std::string, double>& largest_reaction = {});
 
 }  // namespace duet

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <string>
 
 #include "benchmarks/methods.hpp"
 #include "benchmarks/scene_input.hpp"
@@ -91,6 +94,71 @@ TEST(RunWarnings, StepsCutBySafeguards) {
   EXPECT_TRUE(says(warnings_for(newton), "safeguard: Newton needed increments down to 0.00015 s"));
   newton["newton"]["increment_min"] = 1.6e-4;
   EXPECT_TRUE(warnings_for(newton).empty());
+}
+
+// A footing pushed down onto a block, its reaction the run's measure.
+const char* kFooting = R"(
+spacing = 0.25
+[time]
+end_time = 1.0
+[material.clay]
+model = "tresca"
+density = 1800.0
+E = 1.0e6
+nu = 0.3
+cu = 1.0e4
+[body.soil]
+material = "clay"
+min = [0.0, 0.0]
+max = [2.0, 1.0]
+[rigid_body.footing]
+vertices = [[0.0, 1.0], [0.5, 1.0], [0.5, 1.2], [0.0, 1.2]]
+velocity = [[0.0, 0.0, -0.05]]
+)";
+
+TEST(RunWarnings, AMovingBodyThatNeverCarriedAForceIsNamed) {
+  const Scene scene = load_scene_checked_from_string(kFooting, "footing.toml", {});
+  KineticEnergyRecord energy;
+  const EnergyBudget budget(scene, Particles{}, 0.0);
+  const auto warnings = [&](const Scene& s, double largest) {
+    return run_warnings(s, /*inertial=*/false, energy, budget, 1.0, Json::object(), 100,
+                        {{"footing", largest}});
+  };
+  EXPECT_TRUE(says(warnings(scene, 0.0), "rigid_body.footing moved but carried no force"));
+  EXPECT_TRUE(warnings(scene, 1e-3).empty());
+  // A body that stays where it is may well touch nothing.
+  const Scene still = load_scene_checked_from_string(
+      kFooting, "footing.toml", {"rigid_body.footing.velocity=[[0.0, 0.0, 0.0]]"});
+  EXPECT_TRUE(warnings(still, 0.0).empty());
+}
+
+TEST(RunWarnings, AFootingStartingAboveTheSoilIsWarnedOfByTheRun) {
+  // footing.toml's footing lifted 0.3 m off the soil and pushed 0.1 m: ispfem completes with a
+  // bearing of 0 and says why.
+  const std::string out = (std::filesystem::temp_directory_path() /
+                           ("duet-warn-untouched-" + std::to_string(::getpid())))
+                              .string();
+  const test::DuetResult r = test::run_duet(
+      "run '" + std::string(DUET_SOURCE_DIR) +
+      "/benchmarks/scenes/footing.toml' --method ispfem --spacing 0.25 --set time.end_time=2 "
+      "--set 'rigid_body.footing.vertices=[[0.0, 5.3], [1.0, 5.3], [1.0, 5.6], [0.0, 5.6]]' "
+      "--quiet --no-plots --out '" +
+      out + "'");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("duet: warning: rigid_body.footing moved but carried no force"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(test::read_text(out + "/metrics.json").find("rigid_body.footing moved but carried"),
+            std::string::npos);
+  // The same footing on the soil carries its load and is not named.
+  const test::DuetResult on = test::run_duet(
+      "run '" + std::string(DUET_SOURCE_DIR) +
+      "/benchmarks/scenes/footing.toml' --method ispfem --spacing 0.25 --set time.end_time=0.2 "
+      "--quiet --no-plots --out '" +
+      out + "'");
+  EXPECT_EQ(on.status, 0) << on.output;
+  EXPECT_EQ(on.output.find("carried no force"), std::string::npos) << on.output;
+  std::filesystem::remove_all(out);
 }
 
 TEST(RunWarnings, SaidOnTheTerminalAndInMetrics) {
