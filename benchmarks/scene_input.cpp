@@ -4,6 +4,7 @@
 #include <iostream>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "benchmarks/reports.hpp"
 #include "common/input_error.hpp"
@@ -36,14 +37,15 @@ namespace {
 /// Once per message and process: compare and stability load a scene once per run.
 void warn_implausible(const Scene& scene) {
   static std::set<std::string> said;
+  std::vector<std::string> warnings;
   for (const Material& m : scene.materials) {
-    for (const std::string& w :
-         constitutive::implausible_parameters(m.resolved, m.density, "material." + m.name)) {
-      const std::string line = "duet: warning: " + scene.path + ": " + w;
-      if (said.insert(line).second) std::cerr << line << '\n';
-    }
+    const std::vector<std::string> w =
+        constitutive::implausible_parameters(m.resolved, m.density, "material." + m.name);
+    warnings.insert(warnings.end(), w.begin(), w.end());
   }
-  for (const std::string& w : lattice_misfits(scene)) {
+  const std::vector<std::string> misfits = lattice_misfits(scene);
+  warnings.insert(warnings.end(), misfits.begin(), misfits.end());
+  for (const std::string& w : warnings) {
     const std::string line = "duet: warning: " + scene.path + ": " + w;
     if (said.insert(line).second) std::cerr << line << '\n';
   }

@@ -80,33 +80,33 @@ std::vector<std::string> lattice_misfits(const Scene& scene) {
   const double dp = scene.spacing;
   for (const Body& body : scene.bodies) {
     if (body.shape != ShapeKind::rectangle || body.lattice != LatticeKind::square) continue;
+    const Vec2 drawn = body.max - body.min;
+    // Rows kept per axis: cell centres (i + 1/2) dp strictly inside the side (for_each_sample's
+    // rule), so the sampled side is that many spacings.
+    const Vec2 sampled(std::ceil(drawn.x() / dp - 0.5 - 1e-9) * dp,
+                       std::ceil(drawn.y() / dp - 0.5 - 1e-9) * dp);
     std::string text;
     for (int axis = 0; axis < 2; ++axis) {
-      const double side = body.max[axis] - body.min[axis];
-      // Rows kept: cell centres (i + 1/2) dp strictly inside the side (for_each_sample's rule).
-      const double kept = std::ceil(side / dp - 0.5 - 1e-9);
-      const double misfit = side - kept * dp;  // > 0: the lattice ends short of max
-      if (std::abs(misfit) <= 1e-6 * side) continue;
+      const double misfit = drawn[axis] - sampled[axis];  // > 0: the lattice ends short of max
+      if (std::abs(misfit) <= 1e-6 * drawn[axis]) continue;
       char part[300];
       std::snprintf(part, sizeof part,
                     "%s%s %.6g m is %.4g spacings: the lattice's last %s ends %.3g m %s %s = %.6g",
-                    text.empty() ? "" : "; ", axis == 0 ? "width" : "height", side, side / dp,
-                    axis == 0 ? "column" : "row", std::abs(misfit),
+                    text.empty() ? "" : "; ", axis == 0 ? "width" : "height", drawn[axis],
+                    drawn[axis] / dp, axis == 0 ? "column" : "row", std::abs(misfit),
                     misfit > 0.0 ? "short of" : "beyond", axis == 0 ? "max x" : "max y",
                     body.max[axis]);
       text += part;
     }
     if (text.empty()) continue;
-    const Vec2 sampled(std::ceil((body.max.x() - body.min.x()) / dp - 0.5 - 1e-9) * dp,
-                       std::ceil((body.max.y() - body.min.y()) / dp - 0.5 - 1e-9) * dp);
-    const double drawn = (body.max.x() - body.min.x()) * (body.max.y() - body.min.y());
     char tail[300];
     std::snprintf(
         tail, sizeof tail,
         " (spacing %.6g m). The sampled body is %.6g x %.6g m, area %+.2g %% against the "
         "drawn one; whatever rests on that side starts off it, and measures against "
         "the drawn size carry the difference; a spacing that divides both sides fits exactly",
-        dp, sampled.x(), sampled.y(), 100.0 * (sampled.x() * sampled.y() / drawn - 1.0));
+        dp, sampled.x(), sampled.y(),
+        100.0 * (sampled.x() * sampled.y() / (drawn.x() * drawn.y()) - 1.0));
     lines.push_back("body." + body.name + ": " + text + tail);
   }
   return lines;

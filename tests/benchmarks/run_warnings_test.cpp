@@ -138,12 +138,14 @@ TEST(RunWarnings, AFootingStartingAboveTheSoilIsWarnedOfByTheRun) {
   const std::string out = (std::filesystem::temp_directory_path() /
                            ("duet-warn-untouched-" + std::to_string(::getpid())))
                               .string();
-  const test::DuetResult r = test::run_duet(
-      "run '" + std::string(DUET_SOURCE_DIR) +
-      "/benchmarks/scenes/footing.toml' --method ispfem --spacing 0.25 --set time.end_time=2 "
-      "--set 'rigid_body.footing.vertices=[[0.0, 5.3], [1.0, 5.3], [1.0, 5.6], [0.0, 5.6]]' "
-      "--quiet --no-plots --out '" +
-      out + "'");
+  const auto run_footing = [&](const std::string& sets) {
+    return test::run_duet("run '" + std::string(DUET_SOURCE_DIR) +
+                          "/benchmarks/scenes/footing.toml' --method ispfem --spacing 0.25 " +
+                          sets + " --quiet --no-plots --out '" + out + "'");
+  };
+  const test::DuetResult r = run_footing(
+      "--set time.end_time=2 --set 'rigid_body.footing.vertices=[[0.0, 5.3], [1.0, 5.3], [1.0, "
+      "5.6], [0.0, 5.6]]'");
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("duet: warning: rigid_body.footing moved but carried no force"),
             std::string::npos)
@@ -151,11 +153,7 @@ TEST(RunWarnings, AFootingStartingAboveTheSoilIsWarnedOfByTheRun) {
   EXPECT_NE(test::read_text(out + "/metrics.json").find("rigid_body.footing moved but carried"),
             std::string::npos);
   // The same footing on the soil carries its load and is not named.
-  const test::DuetResult on = test::run_duet(
-      "run '" + std::string(DUET_SOURCE_DIR) +
-      "/benchmarks/scenes/footing.toml' --method ispfem --spacing 0.25 --set time.end_time=0.2 "
-      "--quiet --no-plots --out '" +
-      out + "'");
+  const test::DuetResult on = run_footing("--set time.end_time=0.2");
   EXPECT_EQ(on.status, 0) << on.output;
   EXPECT_EQ(on.output.find("carried no force"), std::string::npos) << on.output;
   std::filesystem::remove_all(out);
