@@ -377,6 +377,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   timing["output"] = output_timers.seconds(Phase::output);
   metrics["timing"] = timing;
   metrics["diagnostics"] = solver->diagnostics();
+  energy.end_carriers = kinetic_energy_carriers(particles);
   metrics["kinetic_energy"] = energy.to_json();
   metrics["energy_input"] = budget.to_json();
   std::map<std::string, double> largest_by_name;

@@ -19,11 +19,28 @@ inline double kinetic_energy(const Particles& particles) {
   return 0.5 * e;
 }
 
-/// Peak, time of the peak and latest value of the kinetic energy, one record per step.
+/// Who carries the kinetic energy at one instant. A deposit still settling spreads it over many
+/// particles; a few particles thrown off the body hold most of it (an espfem node kicked out of a
+/// four-node island at the front of collapse-bui, still in flight at the end:
+/// benchmarks/RESULTS.md).
+struct KineticEnergyCarriers {
+  std::size_t half = 0;     // the fewest particles that carry at least half of it; 0: none moves
+  std::size_t largest = 0;  // the particle with the most kinetic energy (row)
+  double speed = 0.0;       // its speed (m/s)
+  Vec2 position = Vec2::Zero();
+
+  Json to_json() const;
+};
+
+KineticEnergyCarriers kinetic_energy_carriers(const Particles& particles);
+
+/// Peak, time of the peak and latest value of the kinetic energy, one record per step; who
+/// carries it at the end (set once the run ends).
 struct KineticEnergyRecord {
   double peak = 0.0;
   double peak_time = 0.0;
   double end = 0.0;
+  KineticEnergyCarriers end_carriers;
 
   void record(double time, double energy) {
     end = energy;
@@ -41,6 +58,7 @@ struct KineticEnergyRecord {
     j["peak_time"] = peak_time;
     j["end"] = end;
     j["end_over_peak"] = end_over_peak();
+    j["end_carriers"] = end_carriers.to_json();
     return j;
   }
 };

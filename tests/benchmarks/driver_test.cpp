@@ -281,6 +281,31 @@ TEST(Driver, DepositStillMovingAtTheEndIsWarnedOf) {
       << metrics;
 }
 
+TEST(Driver, ParticlesThrownOffARestingBodyAreNamedInTheNotAtRestWarning) {
+  // Under gravity, nothing driven: a 1 m x 0.05 m block (500 particles) at rest, a grain of
+  // four particles sliding at 1 m/s. All the kinetic energy at the end is the grain's: two of
+  // 504 particles carry half, within 1 %.
+  std::string text = kScene;
+  text.replace(text.find("spacing = 0.01"), 14, "spacing = 0.01\ngravity = [0.0, -10.0]");
+  text.replace(text.find("max = [0.1, 0.05]"), 17, "max = [1.0, 0.05]");
+  text.replace(text.find("initial_velocity = [0.1, 0.0]"), 29, "initial_velocity = [0.0, 0.0]");
+  text +=
+      "[body.grain]\nmaterial = \"steel\"\nshape = \"rectangle\"\nmin = [0.3, 0.06]\n"
+      "max = [0.32, 0.08]\ninitial_velocity = [1.0, 0.0]\n";
+  text += "[wall.floor]\npoints = [[-0.5, 0.0], [1.5, 0.0]]\ncondition = \"free-slip\"\n";
+  const Scene scene = load_scene_from_string(text, "moving-block.toml");
+  RunOptions options{out_dir("thrown-off"), false};
+  const RunSummary summary = run_scene(scene, ballistic({}), options);
+  ASSERT_EQ(summary.status, "completed") << summary.failure_reason;
+  const std::string metrics = read_text(options.out_dir + "/metrics.json");
+  // the grain's first particle, row 500, at (0.305 + 1.0 m/s x 1 s, 0.065)
+  EXPECT_NE(metrics.find("not at rest, and thrown off: the kinetic energy at t = 1 s is 1 of its "
+                         "peak (at t = 0 s), and 2 of 504 particles carry half of it; the most, "
+                         "particle 500 at (1.305, 0.065) m, moves at 1 m/s"),
+            std::string::npos)
+      << metrics;
+}
+
 TEST(Driver, RunWithoutGravityOrStillAtTheEndHasNoWarning) {
   const Scene scene = load_scene_from_string(kScene, "moving-block.toml");  // no gravity
   RunOptions options{out_dir("no-warning"), false};

@@ -40,5 +40,33 @@ TEST(KineticEnergyRecord, ARunThatNeverMovesHasARatioOfZero) {
   EXPECT_EQ(r.end_over_peak(), 0.0);
 }
 
+TEST(KineticEnergyCarriers, TheFewestParticlesCarryingHalfAndTheOneCarryingMost) {
+  // Arrange: kinetic energies 0.5 m v^2 = 1, 9, 1, 1 J/m (total 12): the second alone carries
+  // more than half
+  Particles p;
+  p.resize(4);
+  p.mass = {2.0, 2.0, 2.0, 2.0};
+  p.velocity = {Vec2(1.0, 0.0), Vec2(0.0, -3.0), Vec2(-1.0, 0.0), Vec2(0.0, 1.0)};
+  p.position = {Vec2(0.0, 0.0), Vec2(0.5, 0.25), Vec2(1.0, 0.0), Vec2(2.0, 0.0)};
+  // Act
+  const KineticEnergyCarriers one = kinetic_energy_carriers(p);
+  p.velocity[1] = Vec2(0.0, 1.0);  // now 1 J/m each: two of four carry half
+  const KineticEnergyCarriers spread = kinetic_energy_carriers(p);
+  // Assert
+  EXPECT_EQ(one.half, 1u);
+  EXPECT_EQ(one.largest, 1u);
+  EXPECT_DOUBLE_EQ(one.speed, 3.0);
+  EXPECT_EQ(one.position, Vec2(0.5, 0.25));
+  EXPECT_EQ(spread.half, 2u);
+}
+
+TEST(KineticEnergyCarriers, NoneWhenNothingMoves) {
+  Particles p;
+  p.resize(3);
+  p.mass = {1.0, 1.0, 1.0};
+  EXPECT_EQ(kinetic_energy_carriers(p).half, 0u);
+  EXPECT_EQ(kinetic_energy_carriers(Particles{}).half, 0u);
+}
+
 }  // namespace
 }  // namespace duet
