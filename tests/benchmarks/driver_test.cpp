@@ -155,6 +155,25 @@ TEST(Driver, ParticleCrossingAWallStopsTheRunAndKeepsItsFrames) {
   EXPECT_GE(count_frames(options.out_dir + "/run.h5"), 7u);  // 0 .. 0.5 and the failed state
 }
 
+TEST(Driver, ARadialWallOvertakingAParticleAtRestIsACrossing) {
+  // A chorded arc of radius 0.4 m about (-0.5, 0.025) growing at 0.2 m/s; the block at rest.
+  // Its vertex on the centre's row reaches the particle at (0.005, 0.025), 0.505 m from the
+  // centre, at t = 0.525 s: at step 53 (t = 0.53 s). The particle never moves: only a test in
+  // the wall's frame sees it.
+  std::string text = kScene;
+  text.replace(text.find("initial_velocity = [0.1, 0.0]"), 29, "initial_velocity = [0.0, 0.0]");
+  text +=
+      "[wall.piston]\npoints = [[-0.153590, -0.175], [-0.1, 0.025], [-0.153590, 0.225]]\n"
+      "condition = \"free-slip\"\ncentre = [-0.5, 0.025]\nradial_velocity = [[0.0, 0.2]]\n";
+  const Scene scene = load_scene_from_string(text, "moving-block.toml");
+  RunOptions options{out_dir("radial-crossing"), false};
+  const RunSummary summary = run_scene(scene, ballistic({}), options);
+  EXPECT_EQ(summary.status, "failed");
+  EXPECT_NE(summary.failure_reason.find("crossed wall 'piston'"), std::string::npos)
+      << summary.failure_reason;
+  EXPECT_NEAR(summary.failure_time, 0.53, 1e-9);
+}
+
 TEST(Driver, ParticleLeavingTheDomainIsAFailureWithTimeAndParticle) {
   std::string text = kScene;
   text.replace(text.find("max = [2.0, 1.0]"), 16, "max = [0.1505, 1.0]");
