@@ -99,16 +99,6 @@ inline pid_t start_collapse_run(const std::vector<std::string>& arguments,
   return start_run("collapse", "sph", arguments, in_child);
 }
 
-/// Waits (at most a minute) until the run in `out` has written its first frame: its signal
-/// handlers are installed and it is stepping.
-inline void wait_for_first_frame(const std::filesystem::path& out) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!std::filesystem::exists(out / "run.xdmf") &&
-         std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-}
-
 /// Frames run.xdmf lists: those completed (flushed) before it was last replaced.
 inline std::size_t frames_listed(const std::filesystem::path& xdmf) {
   const std::string s = read_text(xdmf);
@@ -118,6 +108,19 @@ inline std::size_t frames_listed(const std::filesystem::path& xdmf) {
     ++count;
   }
   return count;
+}
+
+/// Waits (at most a minute) until the run in `out` has written its first frame: its signal
+/// handlers are installed and it is stepping. run.xdmf alone is not enough: the writer lists no
+/// frame in it until frame 0 is closed (a kill 37 ms after the file appeared found none under the
+/// sanitizers).
+inline void wait_for_first_frame(const std::filesystem::path& out) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  const std::filesystem::path xdmf = out / "run.xdmf";
+  while (!(std::filesystem::exists(xdmf) && frames_listed(xdmf) >= 1) &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
 }
 
 }  // namespace duet::test
