@@ -223,15 +223,17 @@ Vec2 schedule_integral(const Schedule& schedule, double t) {
   return sum + piece(last.time, inf, last, last);
 }
 
+Vec2 moved_along_radius(const Vec2& point, const Vec2& centre, double growth) {
+  const Vec2 r = point - centre;
+  const double length = r.norm();
+  return length > 0.0 ? Vec2(point + growth * r / length) : point;
+}
+
 std::vector<Vec2> wall_points_at(const Wall& wall, double t) {
   std::vector<Vec2> points = wall.points;
   if (wall.radial) {
     const double growth = schedule_integral(wall.radial_velocity, t).x();
-    for (Vec2& p : points) {
-      const Vec2 r = p - wall.centre;
-      const double length = r.norm();
-      if (length > 0.0) p += growth * r / length;
-    }
+    for (Vec2& p : points) p = moved_along_radius(p, wall.centre, growth);
   } else {
     const Vec2 shift = schedule_integral(wall.velocity, t);
     for (Vec2& p : points) p += shift;

@@ -63,6 +63,10 @@ Vec2 schedule_value(const Schedule& schedule, double t);
 /// Integral of the schedule from 0 to t (the displacement of a wall moving with it).
 Vec2 schedule_integral(const Schedule& schedule, double t);
 
+/// `point` moved away from `centre` by `growth` along the radius through it (a radial wall's
+/// point; the centre itself stays).
+Vec2 moved_along_radius(const Vec2& point, const Vec2& centre, double growth);
+
 /// A wall's polyline at time t: translated by the integral of its velocity or, for a radial
 /// wall, every point moved away from the centre by the integral of the radial speed.
 std::vector<Vec2> wall_points_at(const Wall& wall, double t);

@@ -20,9 +20,8 @@ inline double kinetic_energy(const Particles& particles) {
 }
 
 /// Who carries the kinetic energy at one instant. A deposit still settling spreads it over many
-/// particles; a few particles thrown off the body hold most of it (an espfem node kicked out of a
-/// four-node island at the front of collapse-bui, still in flight at the end:
-/// benchmarks/RESULTS.md).
+/// particles; a few particles thrown off the body hold most of it (an espfem node thrown up from
+/// the front of collapse-bui, still in flight at the end: benchmarks/RESULTS.md).
 struct KineticEnergyCarriers {
   std::size_t half = 0;     // the fewest particles that carry at least half of it; 0: none moves
   std::size_t largest = 0;  // the particle with the most kinetic energy (row)

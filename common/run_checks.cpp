@@ -83,9 +83,9 @@ std::optional<StateProblem> StateChecks::check(const Particles& particles,
     Vec2 lo, hi;
     bounding_box(points, lo, hi);
     for (std::size_t i = 0; i < n; ++i) {
-      Vec2 from = previous_position[i] + wall_motion;
-      const Vec2 radius = previous_position[i] - wall.centre;
-      if (growth != 0.0 && radius.norm() > 0.0) from += growth * radius / radius.norm();
+      const Vec2 from = growth != 0.0
+                            ? moved_along_radius(previous_position[i], wall.centre, growth)
+                            : Vec2(previous_position[i] + wall_motion);
       const Vec2& to = particles.position[i];
       if ((from.array().max(to.array()) < lo.array()).any() ||
           (from.array().min(to.array()) > hi.array()).any()) {

@@ -284,13 +284,18 @@ TEST(Driver, LiftOffCheckTurnedOffLetsTheBodyLeave) {
   EXPECT_EQ(run_scene(scene, ballistic({}), options).status, "completed");
 }
 
+// A scene under gravity on a free-slip floor, nothing driven: the end-of-run "not at rest"
+// warning applies to it.
+std::string settling(std::string text) {
+  text.replace(text.find("spacing = 0.01"), 14, "spacing = 0.01\ngravity = [0.0, -10.0]");
+  text += "[wall.floor]\npoints = [[-0.5, 0.0], [1.5, 0.0]]\ncondition = \"free-slip\"\n";
+  return text;
+}
+
 TEST(Driver, DepositStillMovingAtTheEndIsWarnedOf) {
   // Under gravity, nothing driven, the block still sliding at 0.1 m/s at the end: its kinetic
   // energy at the end is its peak.
-  std::string text = kScene;
-  text.replace(text.find("spacing = 0.01"), 14, "spacing = 0.01\ngravity = [0.0, -10.0]");
-  text += "[wall.floor]\npoints = [[-0.5, 0.0], [1.5, 0.0]]\ncondition = \"free-slip\"\n";
-  const Scene scene = load_scene_from_string(text, "moving-block.toml");
+  const Scene scene = load_scene_from_string(settling(kScene), "moving-block.toml");
   RunOptions options{out_dir("not-at-rest"), false};
   const RunSummary summary = run_scene(scene, ballistic({}), options);
   ASSERT_EQ(summary.status, "completed") << summary.failure_reason;
@@ -304,14 +309,12 @@ TEST(Driver, ParticlesThrownOffARestingBodyAreNamedInTheNotAtRestWarning) {
   // Under gravity, nothing driven: a 1 m x 0.05 m block (500 particles) at rest, a grain of
   // four particles sliding at 1 m/s. All the kinetic energy at the end is the grain's: two of
   // 504 particles carry half, within 1 %.
-  std::string text = kScene;
-  text.replace(text.find("spacing = 0.01"), 14, "spacing = 0.01\ngravity = [0.0, -10.0]");
+  std::string text = settling(kScene);
   text.replace(text.find("max = [0.1, 0.05]"), 17, "max = [1.0, 0.05]");
   text.replace(text.find("initial_velocity = [0.1, 0.0]"), 29, "initial_velocity = [0.0, 0.0]");
   text +=
       "[body.grain]\nmaterial = \"steel\"\nshape = \"rectangle\"\nmin = [0.3, 0.06]\n"
       "max = [0.32, 0.08]\ninitial_velocity = [1.0, 0.0]\n";
-  text += "[wall.floor]\npoints = [[-0.5, 0.0], [1.5, 0.0]]\ncondition = \"free-slip\"\n";
   const Scene scene = load_scene_from_string(text, "moving-block.toml");
   RunOptions options{out_dir("thrown-off"), false};
   const RunSummary summary = run_scene(scene, ballistic({}), options);
