@@ -229,6 +229,10 @@ enum class SpfemTimeStep { cell_size, gershgorin };
 /// [spfem] (Zhang 2018 / Yuan 2019): alpha shape alpha = alpha_factor * dp.
 struct SpfemOptions {
   double alpha_factor = 1.5;
+  // A Delaunay triangle with an edge shorter than min_edge_factor * dp is not kept: two nodes
+  // that near are one point to the mesh, and the sliver between them has a cell too small to
+  // resist its strain (spfem/README.md, step 1); 0 = every triangle the alpha test keeps.
+  double min_edge_factor = 0.0;
   double time_step_safety = 0.5;
   // Largest relative stress increment M / |sigma| |D| dt a step may give a node whose stiffness
   // grows with its stress (hypoplastic); 0 = no limit.

@@ -161,6 +161,8 @@ std::vector<SceneKey> make_keys() {
        "velocity of no-slip dummy particles: wall | extrapolated (Morris 1997)"},
       // --- [spfem] ---
       {"spfem", "alpha_factor", "number", "-", "1.5", "alpha shape radius / spacing"},
+      {"spfem", "min_edge_factor", "number", "-", "0.0",
+       "a triangle with an edge below min_edge_factor x spacing is not kept, in [0, 0.5]"},
       {"spfem", "time_step_safety", "number", "-", "0.5", "espfem: safety on the critical step"},
       {"spfem", "damping", "number", "1/s", "0.0", "espfem: viscous damping -damping m v"},
       {"spfem", "local_damping", "number", "-", "0.0",

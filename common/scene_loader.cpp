@@ -393,6 +393,8 @@ SphOptions read_sph(SectionReader& r) {
 SpfemOptions read_spfem(SectionReader& r) {
   SpfemOptions o;
   o.alpha_factor = r.number("alpha_factor", o.alpha_factor, positive("a multiple of dp (-)"));
+  o.min_edge_factor =
+      r.number("min_edge_factor", o.min_edge_factor, in_closed(0.0, 0.5, "a fraction of dp (-)"));
   o.time_step_safety =
       r.number("time_step_safety", o.time_step_safety, positive("a safety factor (-)"));
   o.time_step = r.choice("time_step", {"cell-size", "gershgorin"}, "cell-size") == "cell-size"

@@ -48,17 +48,25 @@ double cross(const Vec2& u, const Vec2& v) {
   return u.x() * v.y() - u.y() * v.x();
 }
 
+enum class FaceTest { kept, above_alpha, short_edge };
+
 // Alpha criterion on one Delaunay face: circumradius R = a b c / (4 A) < alpha, written without
 // division as a^2 b^2 c^2 < 4 alpha^2 (2A)^2. A zero-area face (2A = 0) never passes: it is
-// dropped.
-bool below_alpha(const Kernel::Point_2& p0, const Kernel::Point_2& p1, const Kernel::Point_2& p2,
-                 double alpha_squared) {
+// dropped. So is a face with an edge shorter than min_edge: two nodes that near (nodes landed
+// side by side on a wall) make a sliver whose nodes' cells have almost no area, so in explicit
+// dynamics their strain grows with almost no force back until a remesh hands that stress to a
+// full cell.
+FaceTest test_face(const Kernel::Point_2& p0, const Kernel::Point_2& p1, const Kernel::Point_2& p2,
+                   double alpha_squared, double min_edge_squared) {
   const double ux = p1.x() - p0.x(), uy = p1.y() - p0.y();
   const double vx = p2.x() - p0.x(), vy = p2.y() - p0.y();
   const double wx = p2.x() - p1.x(), wy = p2.y() - p1.y();
   const double twice_area = ux * vy - uy * vx;  // > 0: CGAL's finite faces are counter-clockwise
-  const double product = (ux * ux + uy * uy) * (vx * vx + vy * vy) * (wx * wx + wy * wy);
-  return twice_area > 0.0 && product < 4.0 * alpha_squared * twice_area * twice_area;
+  const double uu = ux * ux + uy * uy, vv = vx * vx + vy * vy, ww = wx * wx + wy * wy;
+  if (!(twice_area > 0.0 && uu * vv * ww < 4.0 * alpha_squared * twice_area * twice_area)) {
+    return FaceTest::above_alpha;
+  }
+  return std::min(uu, std::min(vv, ww)) < min_edge_squared ? FaceTest::short_edge : FaceTest::kept;
 }
 
 std::int32_t find_root(std::vector<std::int32_t>& parent, std::int32_t i) {
@@ -216,20 +224,26 @@ void label_from_faces(const Delaunay& delaunay, std::size_t n_nodes, AlphaMesh& 
 
 }  // namespace
 
-void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh, bool fresh) {
+void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh, bool fresh,
+                      double min_edge) {
   Scratch& s = scratch;
   if (fresh || !move_and_flip(points, alpha, s)) rebuild(points, alpha, s);
   Delaunay& delaunay = s.delaunay;
 
   mesh.triangles.clear();
   mesh.n_delaunay = 0;
+  mesh.n_short_edge = 0;
   const double alpha_squared = alpha * alpha;
+  const double min_edge_squared = min_edge * min_edge;
   for (auto f = delaunay.all_faces_begin(); f != delaunay.all_faces_end(); ++f) f->info() = -1;
   for (auto f = delaunay.finite_faces_begin(); f != delaunay.finite_faces_end(); ++f) {
     const auto v0 = f->vertex(0), v1 = f->vertex(1), v2 = f->vertex(2);
     if (v0->info() < 0 || v1->info() < 0 || v2->info() < 0) continue;  // a face on the frame
     ++mesh.n_delaunay;
-    if (below_alpha(v0->point(), v1->point(), v2->point(), alpha_squared)) {
+    const FaceTest test =
+        test_face(v0->point(), v1->point(), v2->point(), alpha_squared, min_edge_squared);
+    mesh.n_short_edge += test == FaceTest::short_edge ? 1 : 0;
+    if (test == FaceTest::kept) {
       f->info() = static_cast<std::int32_t>(mesh.triangles.size());
       mesh.triangles.push_back({v0->info(), v1->info(), v2->info()});  // counter-clockwise
     }

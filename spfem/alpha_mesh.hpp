@@ -26,14 +26,16 @@ struct AlphaMesh {
   std::vector<std::int32_t> component;  // per node: connected piece of the kept mesh; -1 isolated
   std::int32_t n_components = 0;        // pieces (bodies) of the kept mesh
   std::size_t n_delaunay = 0;           // Delaunay faces before the alpha test
+  std::size_t n_short_edge = 0;  // faces the alpha test kept and the shortest-edge test refused
 };
 
-/// Triangulates `points` and keeps the faces whose circumradius is below `alpha` (m); fills
-/// surface nodes and connected components. Reuses the storage of `mesh`. The triangulation of the
-/// last call is moved and flipped when it can be (the same triangles, listed in an order that
-/// depends on the triangulation's history); `fresh` builds it anew (an order of the points alone).
+/// Triangulates `points` and keeps the faces whose circumradius is below `alpha` (m) and whose
+/// every edge is at least `min_edge` (m) long; fills surface nodes and connected components.
+/// Reuses the storage of `mesh`. The triangulation of the last call is moved and flipped when it
+/// can be (the same triangles, listed in an order that depends on the triangulation's history);
+/// `fresh` builds it anew (an order of the points alone).
 void build_alpha_mesh(const std::vector<Vec2>& points, double alpha, AlphaMesh& mesh,
-                      bool fresh = false);
+                      bool fresh = false, double min_edge = 0.0);
 
 /// Recomputes `surface`, `component` and `n_components` of `mesh` from its triangles (for a mesh
 /// kept across steps, or one built by hand in a test). `n_nodes` is the number of points.

@@ -497,6 +497,7 @@ Json ExplicitSolver::diagnostics() const {
   j["surface_nodes"] = static_cast<long>(m.surface_nodes);
   j["components"] = static_cast<long>(m.components);
   j["isolated_nodes_max"] = static_cast<long>(m.isolated_nodes_max);
+  j["short_edge_triangles_max"] = static_cast<long>(m.short_edge_triangles_max);
   j["dt_min"] = c.dt_min;
   j["dt_max"] = c.dt_max;
   j["smallest_angle"] = m.smallest_angle;

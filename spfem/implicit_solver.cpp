@@ -707,6 +707,7 @@ Json ImplicitSolver::diagnostics() const {
   j["surface_nodes"] = static_cast<long>(m.surface_nodes);
   j["components"] = static_cast<long>(m.components);
   j["isolated_nodes_max"] = static_cast<long>(m.isolated_nodes_max);
+  j["short_edge_triangles_max"] = static_cast<long>(m.short_edge_triangles_max);
   j["smallest_angle"] = m.smallest_angle;
   j["wall_strip_edges"] = static_cast<long>(discretisation_.wall_strips().edges.size());
   return j;

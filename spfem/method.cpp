@@ -94,8 +94,9 @@ std::vector<Reaction> named_reactions(const std::vector<NodeBoundary>& boundarie
 const std::vector<MeshTriangle>* mesh_in_use(const NodalDiscretisation& discretisation,
                                              const Particles& particles, AlphaMesh& preview) {
   if (!discretisation.mesh().triangles.empty()) return &discretisation.mesh().triangles;
-  build_alpha_mesh(particles.position,
-                   discretisation.options().alpha_factor * discretisation.spacing(), preview);
+  const SpfemOptions& o = discretisation.options();
+  build_alpha_mesh(particles.position, o.alpha_factor * discretisation.spacing(), preview, false,
+                   o.min_edge_factor * discretisation.spacing());
   return &preview.triangles;
 }
 

@@ -46,7 +46,8 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
     if (remesh && angle <= 0.0) ++counters_.forced_remeshes;
   }
   if (remesh) {
-    build_alpha_mesh(x, o.alpha_factor * spacing_, mesh_, fresh_next_);
+    build_alpha_mesh(x, o.alpha_factor * spacing_, mesh_, fresh_next_,
+                     o.min_edge_factor * spacing_);
     fresh_next_ = false;
     have_mesh_ = true;
     ++counters_.remeshes;
@@ -57,6 +58,8 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
     counters_.isolated_nodes_max = std::max(
         counters_.isolated_nodes_max,
         static_cast<std::size_t>(std::count(mesh_.component.begin(), mesh_.component.end(), -1)));
+    counters_.short_edge_triangles_max =
+        std::max(counters_.short_edge_triangles_max, mesh_.n_short_edge);
   }
   // A restart point keeping its mesh: the labels from the triangles alone and the cells built
   // anew, as a run resumed from it does (spfem.remesh = angle).
@@ -104,7 +107,8 @@ void NodalDiscretisation::save_state(StateBag& state, const std::string& key) co
   put(state, key,
       std::vector<double>{double(c.remeshes), double(c.forced_remeshes), double(c.triangles),
                           double(c.surface_nodes), double(c.components),
-                          double(c.isolated_nodes_max), c.smallest_angle});
+                          double(c.isolated_nodes_max), c.smallest_angle,
+                          double(c.short_edge_triangles_max)});
   put_bits(state, key + ".attached", wall_strips_.attached);
   if (options_.remesh == Remesh::angle) {
     std::vector<double> triangles;
@@ -119,7 +123,10 @@ void NodalDiscretisation::save_state(StateBag& state, const std::string& key) co
 void NodalDiscretisation::restore_state(const StateBag& state, const std::string& key,
                                         std::size_t nodes) {
   const std::vector<double>& v = entry(state, key);
-  if (v.size() != 7) throw std::runtime_error("the saved state's '" + key + "' has another size");
+  // 7 entries: saved before the shortest-edge count (none refused then)
+  if (v.size() != 7 && v.size() != 8) {
+    throw std::runtime_error("the saved state's '" + key + "' has another size");
+  }
   counters_.remeshes = static_cast<long>(v[0]);
   counters_.forced_remeshes = static_cast<long>(v[1]);
   counters_.triangles = static_cast<std::size_t>(v[2]);
@@ -127,6 +134,7 @@ void NodalDiscretisation::restore_state(const StateBag& state, const std::string
   counters_.components = static_cast<int>(v[4]);
   counters_.isolated_nodes_max = static_cast<std::size_t>(v[5]);
   counters_.smallest_angle = v[6];
+  counters_.short_edge_triangles_max = v.size() > 7 ? static_cast<std::size_t>(v[7]) : 0;
   get_bits(state, key + ".attached", wall_strips_.attached);
   if (options_.remesh == Remesh::angle) {
     // The mesh the run kept, in the order it listed its triangles (the frame's own), and their

@@ -29,7 +29,8 @@ struct MeshCounters {
   std::size_t surface_nodes = 0;
   int components = 0;
   std::size_t isolated_nodes_max = 0;
-  double smallest_angle = 180.0;  // deg, smallest seen on a mesh in use
+  std::size_t short_edge_triangles_max = 0;  // refused for an edge below min_edge_factor x dp
+  double smallest_angle = 180.0;             // deg, smallest seen on a mesh in use
 };
 
 class NodalDiscretisation {

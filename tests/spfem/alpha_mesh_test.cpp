@@ -162,6 +162,48 @@ TEST(AlphaMesh, AreaOfARectangleLatticeIsTheHullOfItsCellCentres) {
   EXPECT_NEAR(mesh_area(mesh, x), (width - dp) * (height - dp), 1e-12);
 }
 
+// Two nodes landed side by side on a floor, 0.004 dp apart (collapse-bui through espfem at
+// alpha 1.2 dp: nodes 597 and 759, RESULTS.md "Item 1 again"): the alpha test alone keeps the
+// slivers between them; with a shortest edge of 0.1 dp none of those is kept, and the rest of the
+// mesh is the one without the extra node.
+TEST(AlphaMesh, NoKeptTriangleHasAnEdgeBelowTheShortestEdge) {
+  // Arrange: a 10 x 4 lattice, a node added 0.004 dp beside the bottom row's fifth node
+  const double dp = 0.1;
+  auto x = lattice(10, 4, dp);
+  const auto without = x;
+  x.push_back(x[4] + Vec2(0.004 * dp, 0.0));
+  const auto added = static_cast<std::int32_t>(x.size() - 1);
+  auto shortest_edge = [&x](const Triangle& t) {
+    double e = 1e300;
+    for (int k = 0; k < 3; ++k) e = std::min(e, (x[t[k]] - x[t[(k + 1) % 3]]).norm());
+    return e;
+  };
+  AlphaMesh plain, guarded, reference;
+  // Act
+  build_alpha_mesh(x, 1.5 * dp, plain, true);
+  build_alpha_mesh(x, 1.5 * dp, guarded, true, 0.1 * dp);
+  build_alpha_mesh(without, 1.5 * dp, reference, true);
+  // Assert: slivers without the guard; with it, no edge below 0.1 dp, and every kept triangle
+  // without the added node is one of the lattice's own
+  const auto slivers =
+      std::count_if(plain.triangles.begin(), plain.triangles.end(),
+                    [&](const Triangle& t) { return shortest_edge(t) < 0.1 * dp; });
+  EXPECT_GE(slivers, 1);
+  const FaceSet lattice_faces = kept_faces(reference);
+  std::size_t at_added = 0;
+  for (const Triangle& t : guarded.triangles) {
+    EXPECT_GE(shortest_edge(t), 0.1 * dp);
+    if (std::find(t.begin(), t.end(), added) != t.end()) {
+      ++at_added;
+    } else {
+      EXPECT_TRUE(lattice_faces.contains(testing::sorted(t)));
+    }
+  }
+  EXPECT_EQ(guarded.triangles.size(), plain.triangles.size() - static_cast<std::size_t>(slivers));
+  EXPECT_EQ(guarded.component[static_cast<std::size_t>(added)], 0);  // still in the body
+  EXPECT_GE(at_added, 1u);
+}
+
 TEST(AlphaMesh, SmallestAngleOfARightIsoscelesMeshIs45Degrees) {
   // Arrange: a square lattice splits into right isosceles triangles
   const auto x = lattice(12, 7, 0.1);
