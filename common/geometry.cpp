@@ -223,10 +223,14 @@ Vec2 schedule_integral(const Schedule& schedule, double t) {
   return sum + piece(last.time, inf, last, last);
 }
 
-Vec2 moved_along_radius(const Vec2& point, const Vec2& centre, double growth) {
+Vec2 radial_displacement(const Vec2& point, const Vec2& centre, double growth) {
   const Vec2 r = point - centre;
   const double length = r.norm();
-  return length > 0.0 ? Vec2(point + growth * r / length) : point;
+  return length > 0.0 ? Vec2(growth * r / length) : Vec2(Vec2::Zero());
+}
+
+Vec2 moved_along_radius(const Vec2& point, const Vec2& centre, double growth) {
+  return point + radial_displacement(point, centre, growth);
 }
 
 std::vector<Vec2> wall_points_at(const Wall& wall, double t) {

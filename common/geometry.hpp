@@ -63,8 +63,11 @@ Vec2 schedule_value(const Schedule& schedule, double t);
 /// Integral of the schedule from 0 to t (the displacement of a wall moving with it).
 Vec2 schedule_integral(const Schedule& schedule, double t);
 
-/// `point` moved away from `centre` by `growth` along the radius through it (a radial wall's
-/// point; the centre itself stays).
+/// The displacement of `point` away from `centre` by `growth` along the radius through it (a
+/// radial wall's point; zero at the centre itself).
+Vec2 radial_displacement(const Vec2& point, const Vec2& centre, double growth);
+
+/// `point` moved by radial_displacement.
 Vec2 moved_along_radius(const Vec2& point, const Vec2& centre, double growth);
 
 /// A wall's polyline at time t: translated by the integral of its velocity or, for a radial

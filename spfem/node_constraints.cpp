@@ -14,11 +14,9 @@ ConstraintKind constraint_kind(NodeCondition condition) {
 
 Vec2 boundary_displacement(const NodeBoundary& boundary, double t0, double t1, const Vec2& point) {
   if (boundary.radial) {
-    const Vec2 r = point - boundary.centre;
-    const double length = r.norm();
     const double growth = schedule_integral(boundary.radial_velocity, std::max(t1, 0.0)).x() -
                           schedule_integral(boundary.radial_velocity, std::max(t0, 0.0)).x();
-    return length > 0.0 ? Vec2(growth * r / length) : Vec2(Vec2::Zero());
+    return radial_displacement(point, boundary.centre, growth);
   }
   return schedule_integral(boundary.velocity, std::max(t1, 0.0)) -
          schedule_integral(boundary.velocity, std::max(t0, 0.0));
