@@ -29,7 +29,8 @@ def main():
     ax.plot(xs, [ring(x) for x in xs], "k-", lw=2, label="closed form, 20 m ring")
     for spec in runs:
         label, folder = spec.split("=", 1)
-        status = json.load(open(folder + "/metrics.json"))["status"]
+        with open(folder + "/metrics.json") as f:
+            status = json.load(f)["status"]
         with h5py.File(folder + "/run.h5", "r") as f:
             a = f["series/expansion"][:]
             p = f["series/pressure_curve"][:]
