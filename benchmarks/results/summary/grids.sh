@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The compare grids behind summary.md / summary.png (benchmarks/RESULTS.md, "Accuracy against cost,
-# every benchmark"): one run at a time on one thread, then one summary. About 1 h 15 min on one core.
+# every benchmark"): every run on one thread, the grids in two streams side by side (one per core
+# of a 2-core machine; about 25 min of runs in all), then one summary.
 set -u
 cd "$(dirname "$0")/../../.."
 grid() { out=$1; scene=$2; methods=$3; spacings=$4
@@ -8,20 +9,26 @@ grid() { out=$1; scene=$2; methods=$3; spacings=$4
     --spacings $spacings --target 0.05 --out $out/$scene > $out/$scene.log 2>&1
   echo "$(date +%T) $out/$scene done ($?)"; }
 S=runs/summary; F=runs/summary-fine; mkdir -p $S $F
-grid $S oedometer sph,espfem,ispfem 0.05,0.025
-grid $S bar sph,espfem,ispfem 0.02,0.01
-grid $S cantilever sph,espfem,ispfem 0.02,0.01
-grid $S cantilever-2 sph,espfem,ispfem 0.02,0.01
-grid $S footing sph,espfem,ispfem 0.25,0.166667,0.125
-grid $S collapse sph,espfem 0.01,0.0075,0.005
-grid $S collapse-bui sph,espfem 0.01,0.0075,0.005
-grid $S cavity sph,espfem,ispfem 0.5,0.35
-grid $S footing-deep sph,espfem,ispfem 0.25
-grid $F footing sph,espfem,ispfem 0.1
-grid $F footing-deep espfem,ispfem 0.125
-grid $F collapse sph,espfem 0.0035
-grid $F collapse-bui sph,espfem 0.005,0.0035
-grid $F cavity espfem,ispfem 0.25
+./duet --help > /dev/null  # build once, before the streams share the build folder
+{
+  grid $S oedometer sph,espfem,ispfem 0.05,0.025
+  grid $S bar sph,espfem,ispfem 0.02,0.01
+  grid $S cantilever sph,espfem,ispfem 0.02,0.01
+  grid $S cantilever-2 sph,espfem,ispfem 0.02,0.01
+  grid $S footing sph,espfem,ispfem 0.25,0.166667,0.125
+  grid $F footing sph,espfem,ispfem 0.1
+  grid $S footing-deep sph,espfem,ispfem 0.25
+  grid $F footing-deep espfem,ispfem 0.125
+} &
+{
+  grid $S collapse sph,espfem 0.01,0.0075,0.005
+  grid $S collapse-bui sph,espfem 0.01,0.0075,0.005
+  grid $F collapse sph,espfem 0.0035
+  grid $F collapse-bui sph,espfem 0.005,0.0035
+  grid $S cavity sph,espfem,ispfem 0.5,0.35
+  grid $F cavity espfem,ispfem 0.25
+} &
+wait
 ./duet summary $S/oedometer $S/bar $S/cantilever $S/cantilever-2 $S/footing $F/footing \
   $S/footing-deep $F/footing-deep $S/collapse $F/collapse $S/collapse-bui $F/collapse-bui \
   $S/cavity $F/cavity --out runs/summary-all
