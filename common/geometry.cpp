@@ -233,6 +233,18 @@ Vec2 moved_along_radius(const Vec2& point, const Vec2& centre, double growth) {
   return point + radial_displacement(point, centre, growth);
 }
 
+void fill_sides_from_neighbours(std::vector<int>& side) {
+  const std::vector<int> counted = side;
+  for (std::size_t s = 0; s < side.size(); ++s) {
+    if (counted[s] != 0) continue;
+    for (std::size_t k = 1; k < side.size() && side[s] == 0; ++k) {
+      if (s >= k && counted[s - k] != 0) side[s] = counted[s - k];
+      if (side[s] == 0 && s + k < side.size() && counted[s + k] != 0) side[s] = counted[s + k];
+    }
+    if (side[s] == 0) side[s] = 1;
+  }
+}
+
 std::vector<Vec2> wall_points_at(const Wall& wall, double t) {
   std::vector<Vec2> points = wall.points;
   if (wall.radial) {

@@ -86,16 +86,7 @@ BoundaryGeometry orient_boundary(const NodeBoundary& boundary, std::span<const V
   // Segments with no nodes of their own (left == right): the side of the nearest segment along
   // the wall that has some. Left to the default (+1), the cavity's chords at dp 0.5 faced the
   // cavity, and the expanding wall passed through the soil's first row untouched.
-  std::vector<int>& side = geometry.side;
-  const std::vector<int> counted = side;
-  for (std::size_t s = 0; s < side.size(); ++s) {
-    if (counted[s] != 0) continue;
-    for (std::size_t k = 1; k < side.size() && side[s] == 0; ++k) {
-      if (s >= k && counted[s - k] != 0) side[s] = counted[s - k];
-      if (side[s] == 0 && s + k < side.size() && counted[s + k] != 0) side[s] = counted[s + k];
-    }
-    if (side[s] == 0) side[s] = 1;
-  }
+  fill_sides_from_neighbours(geometry.side);
   update_geometry(boundary, 0.0, geometry);
   return geometry;
 }

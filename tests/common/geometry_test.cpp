@@ -137,5 +137,19 @@ TEST(Geometry, TranslatingWallMovesEveryPointByTheSameDisplacement) {
   EXPECT_NEAR(polyline_length(moved), 0.5, 1e-15);
 }
 
+TEST(Geometry, SegmentsWithoutMaterialTakeTheSideOfTheNearestThatHasSome) {
+  // 0: no material projects onto the segment. Each takes the nearest counted side along the
+  // wall, the earlier on a tie; with none counted, +1.
+  std::vector<int> side = {0, -1, 0, 0, 1, 0};
+  fill_sides_from_neighbours(side);
+  EXPECT_EQ(side, (std::vector<int>{-1, -1, -1, 1, 1, 1}));
+  std::vector<int> tie = {1, 0, -1};
+  fill_sides_from_neighbours(tie);
+  EXPECT_EQ(tie, (std::vector<int>{1, 1, -1}));
+  std::vector<int> none = {0, 0};
+  fill_sides_from_neighbours(none);
+  EXPECT_EQ(none, (std::vector<int>{1, 1}));
+}
+
 }  // namespace
 }  // namespace duet

@@ -86,5 +86,44 @@ TEST(Walls, EveryPointNearAVertexHasOneGhostConvexAndNoneFromAConcaveVertex) {
   EXPECT_GT(convex_points, 100);
 }
 
+TEST(Walls, EveryChordOfACavityFacesTheSoilThoughNoParticleProjectsOntoSome) {
+  // The cavity's quarter wall in 16 chords of 0.098 m, the soil on two rings of a coarse lattice
+  // outside it (4 and 6 particles): most chords have no particle projecting onto them. Each must
+  // still face the soil (away from the centre); with the left normal they faced the cavity, and
+  // SPH's cavity at dp 0.5 held no ghost there (benchmarks/RESULTS.md).
+  WallSpec spec{"cavity", {}, WallCondition::free_slip, {}};
+  for (int k = 0; k <= 16; ++k) spec.polyline.push_back(polar(1.0, 90.0 * k / 16.0));
+  std::vector<Vec2> soil;
+  for (int i = 0; i < 4; ++i) soil.push_back(polar(1.25, 90.0 * (i + 0.5) / 4.0));
+  for (int i = 0; i < 6; ++i) soil.push_back(polar(1.75, 90.0 * (i + 0.5) / 6.0));
+  const double reach = 1.0;
+  const WallGeometry wall = orient_wall(spec, soil, reach);
+  int without_soil = 0;
+  for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
+    bool any = false;
+    for (const Vec2& x : soil) {
+      bool inside = false;
+      const double d = signed_distance(wall, s, x, &inside);
+      any = any || (inside && std::abs(d) <= reach);
+    }
+    without_soil += any ? 0 : 1;
+    const Vec2 middle = 0.5 * (wall.points[s] + wall.points[s + 1]);
+    EXPECT_GT(wall.normals[s].dot(middle), 0.0) << "chord " << s;
+  }
+  EXPECT_GE(without_soil, 8);  // the case the rule is for
+}
+
+TEST(Walls, ARigidBodysOutlineKeepsItsCountedSides) {
+  // A closed outline keeps the count (ties to the left normal) until its own orientation is
+  // fixed (benchmarks/RESULTS.md, "SPH's walls facing the wrong way"): a block's base, with the
+  // soil below it, faces down.
+  WallSpec spec{
+      "footing", {{0, 5}, {1, 5}, {1, 5.3}, {0, 5.3}, {0, 5}}, WallCondition::no_slip, {}};
+  const std::vector<Vec2> soil = {{0.25, 4.9}, {0.75, 4.9}};
+  const WallGeometry wall = orient_wall(spec, soil, 0.2);
+  EXPECT_EQ(wall.normals[0], Vec2(0.0, -1.0));
+  EXPECT_EQ(wall.side[1], 1);  // no soil near the side: the left normal, as before
+}
+
 }  // namespace
 }  // namespace duet::sph
