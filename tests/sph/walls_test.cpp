@@ -113,16 +113,15 @@ TEST(Walls, EveryChordOfACavityFacesTheSoilThoughNoParticleProjectsOntoSome) {
   EXPECT_GE(without_soil, 8);  // the case the rule is for
 }
 
-TEST(Walls, ARigidBodysOutlineKeepsItsCountedSides) {
-  // A closed outline keeps the count (ties to the left normal) until its own orientation is
-  // fixed (benchmarks/RESULTS.md, "SPH's walls facing the wrong way"): a block's base, with the
-  // soil below it, faces down.
+TEST(Walls, ARigidBodysBaseFacesTheSoilBelowIt) {
+  // A block resting on the soil: its base, with soil particles projecting onto it from below,
+  // faces down. (The sides and the top of such a thin body are not yet oriented outwards:
+  // benchmarks/RESULTS.md, "SPH's walls facing the wrong way".)
   WallSpec spec{
       "footing", {{0, 5}, {1, 5}, {1, 5.3}, {0, 5.3}, {0, 5}}, WallCondition::no_slip, {}};
   const std::vector<Vec2> soil = {{0.25, 4.9}, {0.75, 4.9}};
   const WallGeometry wall = orient_wall(spec, soil, 0.2);
   EXPECT_EQ(wall.normals[0], Vec2(0.0, -1.0));
-  EXPECT_EQ(wall.side[1], 1);  // no soil near the side: the left normal, as before
 }
 
 }  // namespace
