@@ -74,8 +74,7 @@ Vec2 moved_along_radius(const Vec2& point, const Vec2& centre, double growth);
 /// no material point projects onto: each such segment takes the side of the nearest segment along
 /// the wall that has one (the first found walking out both ways, the earlier on a tie), +1 when
 /// none has. Left to a default, the short chords of a curved wall (the cavity's 16 at dp 0.5)
-/// faced away from the soil in SPFEM's contact, and the sides of SPH's rigid footing faced into it
-/// (its dummies were laid outside it).
+/// faced away from the soil, in espfem's node contact and in SPH's walls alike.
 void fill_sides_from_neighbours(std::vector<int>& side);
 
 /// A wall's polyline at time t: translated by the integral of its velocity or, for a radial
