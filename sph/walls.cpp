@@ -55,9 +55,8 @@ WallGeometry orient_wall(const WallSpec& wall, std::span<const Vec2> soil, doubl
   } else {
     fill_sides_from_neighbours(geometry.side);
   }
-  for (std::size_t s = 0; s + 1 < p.size(); ++s) {
-    geometry.normals.push_back(geometry.side[s] * left_normal(p[s], p[s + 1]));
-  }
+  geometry.normals.resize(geometry.side.size());
+  update_normals(geometry);  // side x left normal, as after every move
   geometry.point_velocity.assign(geometry.points.size(), Vec2::Zero());
   return geometry;
 }
