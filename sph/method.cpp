@@ -42,7 +42,8 @@ SphSetup make_setup(const Scene& scene) {
     // A symmetry plane is a free-slip wall to SPH: its ghost particles mirror the material.
     const WallCondition condition =
         w.condition == WallCondition::symmetry ? WallCondition::free_slip : w.condition;
-    setup.walls.push_back({w.name, w.points, condition, wall_velocity(w)});
+    setup.walls.push_back(
+        {w.name, w.points, condition, wall_velocity(w), w.condition == WallCondition::symmetry});
   }
   for (const RigidBody& b : scene.rigid_bodies) {
     WallVelocity velocity;

@@ -89,11 +89,21 @@ void SphSolver::initialise(Particles& particles) {
   dummy_position_.clear();
   dummy_velocity_.clear();
   dummy_wall_.clear();
-  for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
-    const WallSpec& wall = setup_.walls[w];
+  for (const WallSpec& wall : setup_.walls) {
     geometry_.push_back(orient_wall(wall, particles.position, kernel_.support_radius()));
-    if (wall.condition != WallCondition::no_slip) continue;
-    for (const Vec2& x : dummy_particles(geometry_.back(), dp, setup_.options.dummy_layers)) {
+  }
+  for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
+    if (setup_.walls[w].condition != WallCondition::no_slip) continue;
+    std::vector<Vec2> dummies = dummy_particles(geometry_[w], dp, setup_.options.dummy_layers);
+    // and their images across each symmetry plane: the other half of a body the plane cuts
+    // (sph/walls.hpp). They move with this wall, as its own do: such a body moves along the plane.
+    for (std::size_t s = 0; s < setup_.walls.size(); ++s) {
+      if (!setup_.walls[s].symmetry) continue;
+      const std::vector<Vec2> images =
+          mirror_dummies_across(geometry_[s], dummies, kernel_.support_radius(), dp);
+      dummies.insert(dummies.end(), images.begin(), images.end());
+    }
+    for (const Vec2& x : dummies) {
       dummy_position_.push_back(x);
       dummy_velocity_.push_back(Vec2::Zero());
       dummy_wall_.push_back(static_cast<std::int32_t>(w));

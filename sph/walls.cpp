@@ -1,5 +1,6 @@
 #include "sph/walls.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -45,13 +46,31 @@ WallGeometry orient_wall(const WallSpec& wall, std::span<const Vec2> soil, doubl
   // along the wall that some do (fill_sides_from_neighbours). Left to the left normal, the
   // cavity's chords that no particle projects onto within reach (10 of its 16 at dp 0.5, 8 at
   // 0.35, none at 0.25) faced the cavity, held no ghost of the soil in front of them, and the
-  // expanding wall overtook the soil. A closed outline (a rigid body) keeps the count with ties to
-  // the left normal: its orientation is a separate defect (benchmarks/RESULTS.md, "SPH's walls
-  // facing the wrong way"), whose fix changes the footing and needs its own round.
+  // expanding wall overtook the soil. A closed outline (a rigid body) has the soil outside it:
+  // every normal points out of the polygon. Counted, the footing (0.3 m thick, thinner than the
+  // reach) saw the soil below it from its top and its sides took the left normal: three of its
+  // four sides faced into it and every row of its dummies lay outside it (benchmarks/RESULTS.md,
+  // "SPH's walls facing the wrong way").
   const std::vector<Vec2>& p = geometry.points;
   const bool closed = p.size() >= 4 && p.front() == p.back();
   if (closed) {
-    for (int& side : geometry.side) side = side == 0 ? 1 : side;
+    const double area = signed_area(std::span<const Vec2>(p.data(), p.size() - 1));
+    geometry.side.assign(p.size() - 1, area > 0.0 ? -1 : 1);  // counter-clockwise: the right
+    // Which faces have soil in front of them: those get their dummy rows at full depth even where
+    // the body is thinner (dummy_particles).
+    geometry.normals.resize(geometry.side.size());
+    update_normals(geometry);
+    geometry.faces_soil.assign(geometry.side.size(), 0);
+    for (std::size_t s = 0; s < geometry.side.size(); ++s) {
+      for (const Vec2& x : soil) {
+        bool inside = false;
+        const double d = signed_distance(geometry, s, x, &inside);
+        if (inside && d >= 0.0 && d <= reach) {
+          geometry.faces_soil[s] = 1;
+          break;
+        }
+      }
+    }
   } else {
     fill_sides_from_neighbours(geometry.side);
   }
@@ -79,7 +98,56 @@ double signed_distance(const WallGeometry& wall, std::size_t segment, const Vec2
   return (x - a).dot(wall.normals[segment]);
 }
 
+namespace {
+
+/// A rigid body's dummies (a closed outline, normals out of it): every row point inside the body,
+/// and, behind a face with soil in front of it, the rows to their full depth where the body is
+/// thinner than the layers (the footing, 0.3 m thick, holds one row of three at dp 0.25: the soil
+/// under it saw a third of the support it needs). Rows stop at the face's ends, so the body is not
+/// widened beyond a convex corner, and a thickening point is dropped in front of another face
+/// with soil before it.
+std::vector<Vec2> body_dummies(const WallGeometry& body, double dp, int layers) {
+  std::vector<Vec2> out;
+  const std::span<const Vec2> polygon(body.points.data(), body.points.size() - 1);
+  const double extension = layers * dp;
+  const auto taken = [&](const Vec2& x) {
+    return std::any_of(out.begin(), out.end(),
+                       [&](const Vec2& y) { return (y - x).squaredNorm() < 0.25 * dp * dp; });
+  };
+  for (std::size_t s = 0; s + 1 < body.points.size(); ++s) {
+    const Vec2 a = body.points[s];
+    const Vec2 b = body.points[s + 1];
+    const Vec2 t = (b - a).normalized();
+    const double length = (b - a).norm();
+    // Rows start half a spacing in from each end so soil sampled on the same lattice lines up.
+    const int n_along = static_cast<int>(std::floor((length + 2.0 * extension) / dp + 1e-9));
+    const double start = -extension + 0.5 * ((length + 2.0 * extension) - n_along * dp) + 0.5 * dp;
+    for (int k = 1; k <= layers; ++k) {
+      for (int m = 0; m < n_along; ++m) {
+        const double u = start + m * dp;
+        const Vec2 x = a + u * t - (k - 0.5) * dp * body.normals[s];
+        bool keep = point_in_polygon(x, polygon);
+        if (!keep && body.faces_soil[s] != 0 && u >= 0.0 && u <= length) {
+          keep = true;
+          for (std::size_t o = 0; o + 1 < body.points.size() && keep; ++o) {
+            bool inside = false;
+            const double d = signed_distance(body, o, x, &inside);
+            if (o != s && body.faces_soil[o] != 0 && inside && d > 0.0 && d < extension) {
+              keep = false;
+            }
+          }
+        }
+        if (keep && !taken(x)) out.push_back(x);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<Vec2> dummy_particles(const WallGeometry& wall, double dp, int layers) {
+  if (!wall.faces_soil.empty()) return body_dummies(wall, dp, layers);
   std::vector<Vec2> out;
   const double extension = layers * dp;
   for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
@@ -113,7 +181,32 @@ std::vector<Vec2> dummy_particles(const WallGeometry& wall, double dp, int layer
   return out;
 }
 
+std::vector<Vec2> mirror_dummies_across(const WallGeometry& plane, std::span<const Vec2> dummies,
+                                        double reach, double dp) {
+  std::vector<Vec2> out;
+  if (plane.points.size() != 2) return out;  // a symmetry plane is one straight segment
+  const Vec2 a = plane.points[0];
+  const Vec2 n = plane.normals[0];
+  const auto taken = [dp](std::span<const Vec2> points, const Vec2& x) {
+    return std::any_of(points.begin(), points.end(),
+                       [&](const Vec2& y) { return (y - x).squaredNorm() < 0.25 * dp * dp; });
+  };
+  for (const Vec2& x : dummies) {
+    const double d = (x - a).dot(n);
+    if (!(d > 0.0 && d < reach)) continue;
+    const Vec2 image = x - 2.0 * d * n;
+    if (!taken(dummies, image) && !taken(out, image)) out.push_back(image);
+  }
+  return out;
+}
+
 bool behind_wall(const WallGeometry& wall, const Vec2& x, double depth) {
+  // A closed outline (a rigid body): inside its polygon. Behind a side within `depth` would count
+  // the soil under a body thinner than `depth` as behind its top.
+  const std::vector<Vec2>& p = wall.points;
+  if (p.size() >= 4 && p.front() == p.back()) {
+    return point_in_polygon(x, std::span<const Vec2>(p.data(), p.size() - 1));
+  }
   for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
     bool inside = false;
     const double d = signed_distance(wall, s, x, &inside);

@@ -26,6 +26,9 @@ struct WallSpec {
   std::vector<Vec2> polyline;  // m; >= 2 points; a closed outline repeats its first point
   WallCondition condition = WallCondition::no_slip;
   WallVelocity velocity;  // empty: fixed
+  // A symmetry plane (held by ghosts as a free-slip wall): the dummies of the other walls and
+  // bodies within reach of it are mirrored across it as well (mirror_dummies_across).
+  bool symmetry = false;
 };
 
 /// A wall's current geometry: the polyline moved with its prescribed velocity, per segment the
@@ -36,13 +39,16 @@ struct WallGeometry {
   std::vector<int> side;
   std::vector<Vec2> normals;
   std::vector<Vec2> point_velocity;
+  // A closed outline (a rigid body) only: per segment, 1 when soil lay in front of it within
+  // reach at the start (its dummy rows then go to full depth); empty for an open wall.
+  std::vector<char> faces_soil;
 };
 
 /// Recomputes the normals after the points moved (keeping each segment's side).
 void update_normals(WallGeometry& wall);
 
 /// Segment normals towards the side holding more soil particles within `reach` of the segment
-/// (the left normal when no soil is near).
+/// (a segment with none takes its neighbours' side); a closed outline's point out of it.
 WallGeometry orient_wall(const WallSpec& wall, std::span<const Vec2> soil, double reach);
 
 /// Signed distance of x from segment s (positive on the soil side) and whether x projects onto
@@ -52,11 +58,20 @@ double signed_distance(const WallGeometry& wall, std::size_t segment, const Vec2
 
 /// Dummy particles in `layers` rows at (k - 1/2) dp behind every segment, spaced dp along it,
 /// rows extended by layers * dp past the polyline's ends and joints so corners are filled;
-/// duplicates closer than dp/2 are dropped.
+/// duplicates closer than dp/2 are dropped. A closed outline's: the row points inside the body,
+/// and behind a face with soil the rows to full depth where the body is thinner (not past the
+/// face's ends).
 std::vector<Vec2> dummy_particles(const WallGeometry& wall, double dp, int layers);
 
-/// True when x lies behind a segment of the wall, within `depth` of it (a soil particle that has
-/// penetrated the wall).
+/// The mirror images across `plane` (a straight symmetry wall) of the dummies within `reach` in
+/// front of it, leaving out any within dp/2 of a dummy already in `dummies`: the dummies the
+/// other half of a symmetric body has. A rigid footing cut by a symmetry plane has none beyond it
+/// otherwise (its side on the plane faces away from it, and its rows stop there).
+std::vector<Vec2> mirror_dummies_across(const WallGeometry& plane, std::span<const Vec2> dummies,
+                                        double reach, double dp);
+
+/// True when x lies behind a segment of the wall, within `depth` of it, or, for a closed outline
+/// (a rigid body), inside it: a soil particle that has penetrated the wall or body.
 bool behind_wall(const WallGeometry& wall, const Vec2& x, double depth);
 
 /// The ghost of a soil particle at x with velocity v across segment `segment` (Peng 2015

@@ -113,15 +113,88 @@ TEST(Walls, EveryChordOfACavityFacesTheSoilThoughNoParticleProjectsOntoSome) {
   EXPECT_GE(without_soil, 8);  // the case the rule is for
 }
 
-TEST(Walls, ARigidBodysBaseFacesTheSoilBelowIt) {
-  // A block resting on the soil: its base, with soil particles projecting onto it from below,
-  // faces down. (The sides and the top of such a thin body are not yet oriented outwards:
-  // benchmarks/RESULTS.md, "SPH's walls facing the wrong way".)
-  WallSpec spec{
+/// The footing of footing.toml (1 m x 0.3 m, base at y = 5) on soil sampled on the lattice of
+/// spacing dp below it, as the solver lays out its walls.
+struct FootingOnSoil {
+  WallGeometry footing;
+  std::vector<Vec2> dummies;
+};
+
+FootingOnSoil footing_on_soil(double dp, double reach) {
+  std::vector<Vec2> soil;
+  for (double x = 0.5 * dp; x < 3.0; x += dp) {
+    for (double y = 5.0 - 0.5 * dp; y > 3.0; y -= dp) soil.emplace_back(x, y);
+  }
+  // counter-clockwise, as footing.toml lists it
+  const WallSpec spec{
       "footing", {{0, 5}, {1, 5}, {1, 5.3}, {0, 5.3}, {0, 5}}, WallCondition::no_slip, {}};
-  const std::vector<Vec2> soil = {{0.25, 4.9}, {0.75, 4.9}};
-  const WallGeometry wall = orient_wall(spec, soil, 0.2);
-  EXPECT_EQ(wall.normals[0], Vec2(0.0, -1.0));
+  FootingOnSoil out;
+  out.footing = orient_wall(spec, soil, reach);
+  out.dummies = dummy_particles(out.footing, dp, 3);
+  return out;
+}
+
+TEST(Walls, EveryFaceOfARigidBodyFacesOutOfIt) {
+  // Arrange: the footing is thinner than the reach (0.3 m < 0.7 m at dp 0.25): counted, the soil
+  // below it lies within reach of its top, and no particle projects onto its sides
+  for (const double dp : {0.25, 0.1}) {
+    // Act
+    const WallGeometry footing = footing_on_soil(dp, 2.83 * dp).footing;
+    // Assert: base down, right side right, top up, left side left
+    EXPECT_EQ(footing.normals[0], Vec2(0.0, -1.0)) << dp;
+    EXPECT_EQ(footing.normals[1], Vec2(1.0, 0.0)) << dp;
+    EXPECT_EQ(footing.normals[2], Vec2(0.0, 1.0)) << dp;
+    EXPECT_EQ(footing.normals[3], Vec2(-1.0, 0.0)) << dp;
+    // only the base has soil in front of it
+    EXPECT_EQ(footing.faces_soil, (std::vector<char>{1, 0, 0, 0})) << dp;
+  }
+}
+
+TEST(Walls, ARigidBodysDummiesFillItAndTheKernelBehindItsBaseButNeverBesideIt) {
+  for (const double dp : {0.25, 1.0 / 6.0, 0.1}) {
+    // Arrange, act
+    const std::vector<Vec2> dummies = footing_on_soil(dp, 2.83 * dp).dummies;
+    // Assert: none beside the footing (0 < x < 1, the symmetry plane's images are the solver's),
+    // none below its base; the columns are the soil's (x = (i + 1/2) dp), and behind the base
+    // three rows at (k - 1/2) dp, the body thinner than that or not
+    std::vector<int> per_column(static_cast<std::size_t>(std::lround(1.0 / dp)), 0);
+    for (const Vec2& x : dummies) {
+      EXPECT_GT(x.x(), 0.0) << dp;
+      EXPECT_LT(x.x(), 1.0) << dp;
+      EXPECT_GT(x.y(), 5.0) << dp;
+      const double column = x.x() / dp - 0.5;
+      EXPECT_NEAR(column, std::round(column), 1e-9) << dp;
+      const double row = (x.y() - 5.0) / dp + 0.5;
+      EXPECT_NEAR(row, std::round(row), 1e-9) << dp;
+      EXPECT_LE(std::lround(row), 3) << dp;
+      per_column.at(static_cast<std::size_t>(std::lround(column))) += 1;
+    }
+    for (const int count : per_column) EXPECT_EQ(count, 3) << dp;
+  }
+}
+
+TEST(Walls, ASoilParticleIsInsideABodyOnlyWithinItsOutline) {
+  // Arrange: the footing at dp 0.25 (dummy depth 0.75 m, more than its 0.3 m)
+  const WallGeometry footing = footing_on_soil(0.25, 0.7).footing;
+  // Act, assert: under the base, within the depth of its top's rows, is not inside the body
+  EXPECT_FALSE(behind_wall(footing, Vec2(0.5, 4.875), 0.75));
+  EXPECT_FALSE(behind_wall(footing, Vec2(1.1, 5.1), 0.75));
+  EXPECT_TRUE(behind_wall(footing, Vec2(0.5, 5.01), 0.75));
+  EXPECT_TRUE(behind_wall(footing, Vec2(0.99, 5.29), 0.75));
+}
+
+TEST(Walls, DummiesWithinReachOfASymmetryPlaneHaveTheirImagesBeyondIt) {
+  // Arrange: the plane x = 0, the soil on its right; dummies at 0.05 and 0.15 m from it, one
+  // beyond the reach, and one whose image is already a dummy
+  const WallGeometry plane = wall_of({{0.0, 0.0}, {0.0, 10.0}}, -1);
+  ASSERT_EQ(plane.normals[0], Vec2(1.0, 0.0));
+  const std::vector<Vec2> dummies = {
+      {0.05, 5.05}, {0.15, 5.05}, {0.95, 5.05}, {0.05, 6.0}, {-0.05, 6.0}};
+  // Act
+  const std::vector<Vec2> images = mirror_dummies_across(plane, dummies, 0.28, 0.1);
+  // Assert
+  const std::vector<Vec2> expected = {{-0.05, 5.05}, {-0.15, 5.05}};
+  EXPECT_EQ(images, expected);
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 (benchmarks/RESULTS.md, "The footing's plateau from w/B 0.05").
 
 Usage (Debian's python3, with h5py and matplotlib):
-  /usr/bin/python3 plot_plateau.py OUT.png "TITLE" LABEL=RUN_DIR [...] [-- "TITLE" LABEL=RUN_DIR ...]
+  /usr/bin/python3 plot_plateau.py [--method=NAME] OUT.png "TITLE" LABEL=RUN_DIR [...] [-- "TITLE" LABEL=RUN_DIR ...]
+(--method names the method in the figure's title: ispfem unless given; runs of any method draw.)
 Each RUN_DIR is a `duet run` output folder of footing.toml or a variant of it (B = 2 m, c_u =
 10 kPa: w/B = -settlement / 2, q/c_u = load_settlement / 1e4). Only runs whose metrics.json says
 `completed` are drawn; any other stops the script.
@@ -32,7 +33,7 @@ def groups(args):
     return out
 
 
-def main(out, args):
+def main(out, args, method="ispfem"):
     panels = groups(args)
     fig, axes = plt.subplots(1, len(panels), figsize=(6.2 * len(panels), 4.6), squeeze=False)
     for ax, (title, runs) in zip(axes[0], panels):
@@ -55,10 +56,14 @@ def main(out, args):
         ax.set_ylabel("q / c_u")
         ax.set_title(title, fontsize=10)
         ax.legend(fontsize=8, loc="lower right")
-    fig.suptitle("footing through ispfem: Prandtl 5.14 +- 2 % (band), scored window w/B 0.05-0.1", fontsize=10)
+    fig.suptitle("footing through " + method + ": Prandtl 5.14 +- 2 % (band), scored window w/B 0.05-0.1", fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2:])
+    argv = sys.argv[1:]
+    method = "ispfem"
+    if argv and argv[0].startswith("--method="):
+        method = argv.pop(0).split("=", 1)[1]
+    main(argv[0], argv[1:], method)
