@@ -18,7 +18,7 @@ S=runs/summary; F=runs/summary-fine; mkdir -p $S $F
   grid $S footing sph,espfem,ispfem 0.25,0.166667,0.125
   grid $F footing sph,espfem,ispfem 0.1
   grid $S footing-deep sph,espfem,ispfem 0.25
-  grid $F footing-deep espfem,ispfem 0.125
+  grid $F footing-deep sph,espfem,ispfem 0.125
 } &
 {
   grid $S collapse sph,espfem 0.01,0.0075,0.005
