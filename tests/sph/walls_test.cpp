@@ -173,6 +173,39 @@ TEST(Walls, ARigidBodysDummiesFillItAndTheKernelBehindItsBaseButNeverBesideIt) {
   }
 }
 
+TEST(Walls, NoDummyOfAConeLiesInTheSoilInFrontOfItsFaces) {
+  // Arrange: a cone (a penetrometer's tip, 60 degrees) over soil sampled at dp 0.05 below its
+  // tip's level and round it, clockwise; and a square turned 45 degrees (a diamond), its lower
+  // faces over the same soil
+  const double dp = 0.05;
+  std::vector<Vec2> soil;
+  for (double x = -1.0 + 0.5 * dp; x < 1.0; x += dp) {
+    for (double y = -0.5 * dp; y > -1.0; y -= dp) soil.emplace_back(x, y);
+  }
+  const double half = std::tan(std::numbers::pi / 6.0) * 0.4;  // 0.4 m high, 60 degree apex
+  const std::vector<std::vector<Vec2>> bodies = {
+      {{0.0, 0.0}, {-half, 0.4}, {half, 0.4}, {0.0, 0.0}},
+      {{0.0, 0.0}, {0.2, 0.2}, {0.0, 0.4}, {-0.2, 0.2}, {0.0, 0.0}}};
+  for (const std::vector<Vec2>& outline : bodies) {
+    const WallSpec spec{"body", outline, WallCondition::no_slip, {}};
+    // Act
+    const WallGeometry body = orient_wall(spec, soil, 2.83 * dp);
+    const std::vector<Vec2> dummies = dummy_particles(body, dp, 3);
+    // Assert: some dummies, and none in front of a face that has soil before it (in the soil)
+    ASSERT_GT(dummies.size(), 10u);
+    for (const Vec2& x : dummies) {
+      for (std::size_t s = 0; s + 1 < body.points.size(); ++s) {
+        if (body.faces_soil[s] == 0) continue;
+        bool inside = false;
+        const double d = signed_distance(body, s, x, &inside);
+        EXPECT_FALSE(inside && d > 1e-12) << "dummy (" << x.x() << ", " << x.y() << ") in front "
+                                          << "of face " << s << " by " << d;
+      }
+      EXPECT_GT(x.y(), 0.0) << x.x();  // above the tip: never below the soil's top
+    }
+  }
+}
+
 TEST(Walls, ASoilParticleIsInsideABodyOnlyWithinItsOutline) {
   // Arrange: the footing at dp 0.25 (dummy depth 0.75 m, more than its 0.3 m)
   const WallGeometry footing = footing_on_soil(0.25, 0.7).footing;
