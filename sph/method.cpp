@@ -121,6 +121,7 @@ class SphMethod final : public Solver {
     j["penetrations_max"] = c.penetrations_max;
     j["penetrations_total"] = c.penetrations_total;
     j["penetrations_last_step"] = c.penetrations_last_step;
+    j["symmetry_reflections"] = c.symmetry_reflections;
     j["rigid_contacts_last_step"] = solver_.rigid_contact().contacts;
     j["dt_min"] = c.dt_min;
     j["dt_max"] = c.dt_max;

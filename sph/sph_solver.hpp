@@ -42,8 +42,9 @@ struct SphSetup {
 struct SphCounters {
   long steps = 0;
   long penetrations_last_step = 0;
-  long penetrations_max = 0;    // most particles behind a wall in any one step
-  long penetrations_total = 0;  // particle-steps behind a wall
+  long penetrations_max = 0;      // most particles behind a wall in any one step
+  long penetrations_total = 0;    // particle-steps behind a wall
+  long symmetry_reflections = 0;  // particles brought back across a symmetry plane (all steps)
   std::size_t dummy_particles = 0;
   std::size_t ghost_particles_max = 0;
   std::size_t neighbours_max = 0;  // longest neighbour row (within 2h + skin)
@@ -134,6 +135,9 @@ class SphSolver {
   void velocity_gradient_pass(const Particles& particles);
   /// Stress (and, with Verlet, the motion) update and the checks.
   void advance(Particles& particles, double dt);
+  /// A particle that ended a step behind a symmetry plane becomes its mirror image (its ghost):
+  /// position, velocity and stress reflected across the plane.
+  void reflect_across_symmetry_planes(Particles& particles);
 
   SphSetup setup_;
   Kernel kernel_;
@@ -155,6 +159,9 @@ class SphSolver {
   // per candidate: segment of that wall, or with kVertexGhost the vertex starting that segment
   std::vector<std::uint32_t> ghost_segment_;
   static constexpr std::uint32_t kVertexGhost = 0x80000000u;
+  // per candidate: -1, or the symmetry plane (wall index) across which its ghost is mirrored
+  // again: the corner's image, where a free-slip wall meets a symmetry plane
+  std::vector<std::int32_t> ghost_plane_;
   std::vector<Vec2> boundary_position_;  // dummies, then ghost candidates (output only)
   std::size_t n_active_ghosts_ = 0;
 

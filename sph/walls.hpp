@@ -27,7 +27,8 @@ struct WallSpec {
   WallCondition condition = WallCondition::no_slip;
   WallVelocity velocity;  // empty: fixed
   // A symmetry plane (held by ghosts as a free-slip wall): the dummies of the other walls and
-  // bodies within reach of it are mirrored across it as well (mirror_dummies_across).
+  // bodies within reach of it are mirrored across it as well (mirror_dummies_across), and a
+  // particle that ends a step beyond it becomes its mirror image (SphSolver).
   bool symmetry = false;
 };
 
