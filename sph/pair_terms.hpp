@@ -75,4 +75,16 @@ inline Mat2 mirror(const Mat2& s, const Vec2& n) {
   return r * s * r;
 }
 
+/// The same for a full tensor, the out-of-plane direction unchanged.
+inline Mat3 mirror(const Mat3& s, const Vec2& n) {
+  Mat3 r = Mat3::Identity();
+  r.topLeftCorner<2, 2>() -= 2.0 * n * n.transpose();
+  return r * s * r;
+}
+
+/// Mirror image of a vector across a line with unit normal n: its normal part reversed.
+inline Vec2 mirror(const Vec2& v, const Vec2& n) {
+  return v - 2.0 * v.dot(n) * n;
+}
+
 }  // namespace duet::sph::detail

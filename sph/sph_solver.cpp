@@ -20,6 +20,7 @@ namespace duet::sph {
 
 using detail::artificial_stress_term;
 using detail::kParallelMin;
+using detail::mirror;
 using detail::PairSum;
 
 namespace {
@@ -597,10 +598,8 @@ void SphSolver::reflect_across_symmetry_planes(Particles& particles) {
     const WallGeometry& plane = geometry_[w];
     if (plane.points.size() != 2) continue;  // a plane is one straight segment
     const Vec2 nv = plane.normals[0];
-    Mat3 r = Mat3::Identity();  // R = I - 2 n n^T, in the plane of the model
-    r.topLeftCorner<2, 2>() -= 2.0 * nv * nv.transpose();
-    const auto reflect_velocity = [&](Vec2& v) { v -= 2.0 * v.dot(nv) * nv; };
-    const auto reflect_tensor = [&](Mat3& t) { t = r * t * r; };
+    const auto reflect_velocity = [&](Vec2& v) { v = mirror(v, nv); };
+    const auto reflect_tensor = [&](Mat3& t) { t = mirror(t, nv); };
 #pragma omp parallel for schedule(static) reduction(+ : reflected) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
       bool inside = false;

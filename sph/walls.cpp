@@ -15,6 +15,40 @@ Vec2 left_normal(const Vec2& a, const Vec2& b) {
   return Vec2(-t.y(), t.x());
 }
 
+/// A closed outline (its last point repeats its first): a rigid body's.
+bool closed_outline(const std::vector<Vec2>& points) {
+  return points.size() >= 4 && points.front() == points.back();
+}
+
+/// Whether x lies within dp/2 of one of `points` (a dummy already laid there).
+bool near_any(std::span<const Vec2> points, const Vec2& x, double dp) {
+  return std::any_of(points.begin(), points.end(),
+                     [&](const Vec2& y) { return (y - x).squaredNorm() < 0.25 * dp * dp; });
+}
+
+/// Calls visit(segment, along, x) for the points of `layers` rows at (k - 1/2) dp behind every
+/// segment, spaced dp along it and extended by layers * dp past its ends; `along` is the
+/// distance from the segment's start. Rows start half a spacing in from each end so soil sampled
+/// on the same lattice lines up.
+template <class Visit>
+void for_each_row_point(const WallGeometry& wall, double dp, int layers, Visit visit) {
+  const double extension = layers * dp;
+  for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
+    const Vec2 a = wall.points[s];
+    const Vec2 b = wall.points[s + 1];
+    const Vec2 t = (b - a).normalized();
+    const double length = (b - a).norm();
+    const int n_along = static_cast<int>(std::floor((length + 2.0 * extension) / dp + 1e-9));
+    const double start = -extension + 0.5 * ((length + 2.0 * extension) - n_along * dp) + 0.5 * dp;
+    for (int k = 1; k <= layers; ++k) {
+      for (int m = 0; m < n_along; ++m) {
+        const double along = start + m * dp;
+        visit(s, along, Vec2(a + along * t - (k - 0.5) * dp * wall.normals[s]));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 WallGeometry orient_wall(const WallSpec& wall, std::span<const Vec2> soil, double reach) {
@@ -52,14 +86,18 @@ WallGeometry orient_wall(const WallSpec& wall, std::span<const Vec2> soil, doubl
   // four sides faced into it and every row of its dummies lay outside it (benchmarks/RESULTS.md,
   // "SPH's walls facing the wrong way").
   const std::vector<Vec2>& p = geometry.points;
-  const bool closed = p.size() >= 4 && p.front() == p.back();
+  const bool closed = closed_outline(p);
   if (closed) {
     const double area = signed_area(std::span<const Vec2>(p.data(), p.size() - 1));
     geometry.side.assign(p.size() - 1, area > 0.0 ? -1 : 1);  // counter-clockwise: the right
+  } else {
+    fill_sides_from_neighbours(geometry.side);
+  }
+  geometry.normals.resize(geometry.side.size());
+  update_normals(geometry);  // side x left normal, as after every move
+  if (closed) {
     // Which faces have soil in front of them: those get their dummy rows at full depth even where
     // the body is thinner (dummy_particles).
-    geometry.normals.resize(geometry.side.size());
-    update_normals(geometry);
     geometry.faces_soil.assign(geometry.side.size(), 0);
     for (std::size_t s = 0; s < geometry.side.size(); ++s) {
       for (const Vec2& x : soil) {
@@ -71,11 +109,7 @@ WallGeometry orient_wall(const WallSpec& wall, std::span<const Vec2> soil, doubl
         }
       }
     }
-  } else {
-    fill_sides_from_neighbours(geometry.side);
   }
-  geometry.normals.resize(geometry.side.size());
-  update_normals(geometry);  // side x left normal, as after every move
   geometry.point_velocity.assign(geometry.points.size(), Vec2::Zero());
   return geometry;
 }
@@ -110,37 +144,19 @@ std::vector<Vec2> body_dummies(const WallGeometry& body, double dp, int layers) 
   std::vector<Vec2> out;
   const std::span<const Vec2> polygon(body.points.data(), body.points.size() - 1);
   const double extension = layers * dp;
-  const auto taken = [&](const Vec2& x) {
-    return std::any_of(out.begin(), out.end(),
-                       [&](const Vec2& y) { return (y - x).squaredNorm() < 0.25 * dp * dp; });
-  };
-  for (std::size_t s = 0; s + 1 < body.points.size(); ++s) {
-    const Vec2 a = body.points[s];
-    const Vec2 b = body.points[s + 1];
-    const Vec2 t = (b - a).normalized();
-    const double length = (b - a).norm();
-    // Rows start half a spacing in from each end so soil sampled on the same lattice lines up.
-    const int n_along = static_cast<int>(std::floor((length + 2.0 * extension) / dp + 1e-9));
-    const double start = -extension + 0.5 * ((length + 2.0 * extension) - n_along * dp) + 0.5 * dp;
-    for (int k = 1; k <= layers; ++k) {
-      for (int m = 0; m < n_along; ++m) {
-        const double u = start + m * dp;
-        const Vec2 x = a + u * t - (k - 0.5) * dp * body.normals[s];
-        bool keep = point_in_polygon(x, polygon);
-        if (!keep && body.faces_soil[s] != 0 && u >= 0.0 && u <= length) {
-          keep = true;
-          for (std::size_t o = 0; o + 1 < body.points.size() && keep; ++o) {
-            bool inside = false;
-            const double d = signed_distance(body, o, x, &inside);
-            if (o != s && body.faces_soil[o] != 0 && inside && d > 0.0 && d < extension) {
-              keep = false;
-            }
-          }
-        }
-        if (keep && !taken(x)) out.push_back(x);
+  for_each_row_point(body, dp, layers, [&](std::size_t s, double along, const Vec2& x) {
+    const double length = (body.points[s + 1] - body.points[s]).norm();
+    bool keep = point_in_polygon(x, polygon);
+    if (!keep && body.faces_soil[s] != 0 && along >= 0.0 && along <= length) {
+      keep = true;
+      for (std::size_t o = 0; o + 1 < body.points.size() && keep; ++o) {
+        bool inside = false;
+        const double d = signed_distance(body, o, x, &inside);
+        if (o != s && body.faces_soil[o] != 0 && inside && d > 0.0 && d < extension) keep = false;
       }
     }
-  }
+    if (keep && !near_any(out, x, dp)) out.push_back(x);
+  });
   return out;
 }
 
@@ -150,34 +166,16 @@ std::vector<Vec2> dummy_particles(const WallGeometry& wall, double dp, int layer
   if (!wall.faces_soil.empty()) return body_dummies(wall, dp, layers);
   std::vector<Vec2> out;
   const double extension = layers * dp;
-  for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
-    const Vec2 a = wall.points[s];
-    const Vec2 b = wall.points[s + 1];
-    const Vec2 t = (b - a).normalized();
-    const Vec2 n = wall.normals[s];
-    const double length = (b - a).norm();
-    // Rows start half a spacing in from each end so soil sampled on the same lattice lines up.
-    const int n_along = static_cast<int>(std::floor((length + 2.0 * extension) / dp + 1e-9));
-    const double start = -extension + 0.5 * ((length + 2.0 * extension) - n_along * dp) + 0.5 * dp;
-    for (int k = 1; k <= layers; ++k) {
-      for (int m = 0; m < n_along; ++m) {
-        const Vec2 x = a + (start + m * dp) * t - (k - 0.5) * dp * n;
-        bool keep = true;
-        // A corner point behind one segment may be in front of its neighbour: keep only points
-        // that are behind (or level with) every segment they project onto.
-        for (std::size_t o = 0; o + 1 < wall.points.size() && keep; ++o) {
-          bool inside = false;
-          const double d = signed_distance(wall, o, x, &inside);
-          if (inside && d > 0.0 && d < extension) keep = false;
-        }
-        for (const Vec2& y : out) {
-          if (!keep) break;
-          if ((y - x).squaredNorm() < 0.25 * dp * dp) keep = false;
-        }
-        if (keep) out.push_back(x);
-      }
+  for_each_row_point(wall, dp, layers, [&](std::size_t, double, const Vec2& x) {
+    // A corner point behind one segment may be in front of its neighbour: keep only points that
+    // are behind (or level with) every segment they project onto.
+    for (std::size_t o = 0; o + 1 < wall.points.size(); ++o) {
+      bool inside = false;
+      const double d = signed_distance(wall, o, x, &inside);
+      if (inside && d > 0.0 && d < extension) return;
     }
-  }
+    if (!near_any(out, x, dp)) out.push_back(x);
+  });
   return out;
 }
 
@@ -187,15 +185,11 @@ std::vector<Vec2> mirror_dummies_across(const WallGeometry& plane, std::span<con
   if (plane.points.size() != 2) return out;  // a symmetry plane is one straight segment
   const Vec2 a = plane.points[0];
   const Vec2 n = plane.normals[0];
-  const auto taken = [dp](std::span<const Vec2> points, const Vec2& x) {
-    return std::any_of(points.begin(), points.end(),
-                       [&](const Vec2& y) { return (y - x).squaredNorm() < 0.25 * dp * dp; });
-  };
   for (const Vec2& x : dummies) {
     const double d = (x - a).dot(n);
     if (!(d > 0.0 && d < reach)) continue;
     const Vec2 image = x - 2.0 * d * n;
-    if (!taken(dummies, image) && !taken(out, image)) out.push_back(image);
+    if (!near_any(dummies, image, dp) && !near_any(out, image, dp)) out.push_back(image);
   }
   return out;
 }
@@ -204,9 +198,7 @@ bool behind_wall(const WallGeometry& wall, const Vec2& x, double depth) {
   // A closed outline (a rigid body): inside its polygon. Behind a side within `depth` would count
   // the soil under a body thinner than `depth` as behind its top.
   const std::vector<Vec2>& p = wall.points;
-  if (p.size() >= 4 && p.front() == p.back()) {
-    return point_in_polygon(x, std::span<const Vec2>(p.data(), p.size() - 1));
-  }
+  if (closed_outline(p)) return point_in_polygon(x, std::span<const Vec2>(p.data(), p.size() - 1));
   for (std::size_t s = 0; s + 1 < wall.points.size(); ++s) {
     bool inside = false;
     const double d = signed_distance(wall, s, x, &inside);
@@ -234,9 +226,7 @@ bool mirror_particle(const WallGeometry& wall, std::size_t segment, const Vec2& 
 
 std::ptrdiff_t segment_before(const WallGeometry& wall, std::size_t after) {
   if (after > 0) return static_cast<std::ptrdiff_t>(after) - 1;
-  const std::size_t points = wall.points.size();
-  const bool closed = points > 3 && wall.points.front() == wall.points.back();
-  return closed ? static_cast<std::ptrdiff_t>(points) - 2 : -1;
+  return closed_outline(wall.points) ? static_cast<std::ptrdiff_t>(wall.points.size()) - 2 : -1;
 }
 
 bool mirror_at_vertex(const WallGeometry& wall, std::size_t after, const Vec2& x, const Vec2& v,

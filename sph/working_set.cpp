@@ -162,7 +162,7 @@ double SphSolver::gather(const Particles& particles) {
       const double d = (x - plane.points[0]).dot(n_p);
       acts = acts && d >= 0.0 && d < reach;
       x -= 2.0 * d * n_p;
-      v -= 2.0 * v.dot(n_p) * n_p;
+      v = mirror(v, n_p);
       s = mirror(s, n_p);
     }
     active += acts ? 1 : 0;

@@ -63,6 +63,20 @@ void add_box(SphSetup& s, double w, double hgt) {
   s.walls.push_back({"right", {Vec2(w, 0), Vec2(w, 2 * hgt)}, WallCondition::free_slip, {}});
 }
 
+/// A block (as `block`) under a uniform pressure of 10 kPa.
+Particles pressed_block(int nx, int ny, double dp, const Vec2& origin = Vec2::Zero()) {
+  Particles p = block(nx, ny, dp, origin);
+  for (Mat3& stress : p.stress) stress = -1.0e4 * Mat3::Identity();
+  return p;
+}
+
+/// A symmetry plane from a to b (a free-slip wall to SPH, its ghosts the other half).
+WallSpec symmetry_plane(const Vec2& a, const Vec2& b) {
+  WallSpec plane{"plane", {a, b}, WallCondition::free_slip, {}};
+  plane.symmetry = true;
+  return plane;
+}
+
 double run(SphSolver& solver, Particles& p, int steps) {
   double t = 0.0;
   for (int k = 0; k < steps; ++k) t += solver.step(p, t);
@@ -132,13 +146,10 @@ TEST(SphSolver, AUniformStressIsInEquilibriumInTheCornerOfAWallAndASymmetryPlane
   // gravity. The corner particles need the ghosts of the plane's images across the wall (the
   // corner's images) for a whole support; without them they are pushed into the corner.
   const double dp = 0.01;
-  Particles p = block(12, 12, dp);
-  for (Mat3& stress : p.stress) stress = -1.0e4 * Mat3::Identity();
+  Particles p = pressed_block(12, 12, dp);
   SphSetup s = setup(dp);
   s.walls.push_back({"wall", {Vec2(0, 0), Vec2(0, 0.3)}, WallCondition::free_slip, {}});
-  WallSpec plane{"plane", {Vec2(0, 0), Vec2(0.3, 0)}, WallCondition::free_slip, {}};
-  plane.symmetry = true;
-  s.walls.push_back(plane);
+  s.walls.push_back(symmetry_plane(Vec2(0, 0), Vec2(0.3, 0)));
   SphSolver solver(std::move(s));
   solver.initialise(p);
   // Act
@@ -161,16 +172,11 @@ TEST(SphSolver, AWallCutByASymmetryPlaneCarriesHalfTheWholeBodysThrust) {
   // free-slip wall x = 0, whole (y from -0.12 to 0.12) and halved by a symmetry plane y = 0
   const double dp = 0.01;
   const auto wall_thrust = [dp](bool half) {
-    Particles p = half ? block(12, 12, dp) : block(12, 24, dp, Vec2(0.0, -0.12));
-    for (Mat3& stress : p.stress) stress = -1.0e4 * Mat3::Identity();
+    Particles p = half ? pressed_block(12, 12, dp) : pressed_block(12, 24, dp, Vec2(0.0, -0.12));
     SphSetup s = setup(dp);
     s.walls.push_back(
         {"wall", {Vec2(0, half ? 0.0 : -0.3), Vec2(0, 0.3)}, WallCondition::free_slip, {}});
-    if (half) {
-      WallSpec plane{"plane", {Vec2(0, 0), Vec2(0.3, 0)}, WallCondition::free_slip, {}};
-      plane.symmetry = true;
-      s.walls.push_back(plane);
-    }
+    if (half) s.walls.push_back(symmetry_plane(Vec2(0, 0), Vec2(0.3, 0)));
     SphSolver solver(std::move(s));
     solver.initialise(p);
     solver.step(p, 0.0);
@@ -196,9 +202,7 @@ TEST(SphSolver, AParticleEndingAStepBeyondASymmetryPlaneBecomesItsMirrorImage) {
   p.velocity[0] = Vec2(0.2, -1.0);
   p.stress[0](0, 1) = p.stress[0](1, 0) = 100.0;
   SphSetup s = setup(dp);
-  WallSpec plane{"plane", {Vec2(-0.3, 0), Vec2(0.3, 0)}, WallCondition::free_slip, {}};
-  plane.symmetry = true;
-  s.walls.push_back(plane);
+  s.walls.push_back(symmetry_plane(Vec2(-0.3, 0), Vec2(0.3, 0)));
   SphSolver solver(std::move(s));
   solver.initialise(p);
   // Act
