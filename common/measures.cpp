@@ -48,6 +48,16 @@ const RigidBody* rigid_body_named(const Scene& scene, const std::string& name) {
   return nullptr;
 }
 
+// A front measure's column width and least depth (m): its own, or the lattice column of dp and
+// min_thickness spacings.
+double front_column_width(const Measure& m, double spacing) {
+  return m.column_width > 0.0 ? m.column_width : spacing;
+}
+
+double front_min_depth(const Measure& m, double spacing) {
+  return m.min_depth > 0.0 ? m.min_depth : m.min_thickness * spacing;
+}
+
 double mean_distance(const std::vector<Vec2>& points, const Vec2& centre) {
   double sum = 0.0;
   for (const Vec2& p : points) sum += (p - centre).norm();
@@ -56,10 +66,15 @@ double mean_distance(const std::vector<Vec2>& points, const Vec2& centre) {
 
 }  // namespace
 
-double front_position(const Particles& particles, int body, double spacing, double min_thickness) {
+double front_position(const Particles& particles, int body, double spacing, double column_width,
+                      double min_depth) {
+  // A column's depth is its particles' count times dp^2 over its width; the least count that
+  // reaches min_depth, with a relative 1e-9 so that 3 particles make "3 spacings" exactly.
+  const double area = spacing * spacing;
+  const double min_count = min_depth > 0.0 ? min_depth * column_width / area * (1.0 - 1e-9) : 0.0;
   std::map<long, int> column_count;
-  auto column = [spacing](double x) { return static_cast<long>(std::floor(x / spacing)); };
-  if (min_thickness > 1.0) {
+  auto column = [column_width](double x) { return static_cast<long>(std::floor(x / column_width)); };
+  if (min_count > 0.0) {
     for (std::size_t i = 0; i < particles.size(); ++i) {
       if (particles.body[i] == body) ++column_count[column(particles.position[i].x())];
     }
@@ -68,7 +83,7 @@ double front_position(const Particles& particles, int body, double spacing, doub
   for (std::size_t i = 0; i < particles.size(); ++i) {
     if (particles.body[i] != body) continue;
     const double x = particles.position[i].x();
-    if (min_thickness > 1.0 && column_count[column(x)] < min_thickness) continue;
+    if (min_count > 0.0 && column_count[column(x)] < min_count) continue;
     front = std::max(front, x);
   }
   return std::isfinite(front) ? front : kNaN;
@@ -80,7 +95,8 @@ double evaluate_measure(const Measure& measure, const Scene& scene, const Partic
   switch (measure.kind) {
     case MeasureKind::front:
       value = front_position(particles, body_index(scene, measure.target), scene.spacing,
-                             measure.min_thickness);
+                             front_column_width(measure, scene.spacing),
+                             front_min_depth(measure, scene.spacing));
       break;
     case MeasureKind::height: {
       const int body = body_index(scene, measure.target);

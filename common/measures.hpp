@@ -19,9 +19,11 @@ namespace duet {
 double evaluate_measure(const Measure& measure, const Scene& scene, const Particles& particles,
                         const std::vector<Reaction>& reactions, double time);
 
-/// Toe of a body: the largest x among particles whose lattice column (width dp) holds at least
-/// `min_thickness` spacings of material (every particle counts when min_thickness <= 1).
-double front_position(const Particles& particles, int body, double spacing, double min_thickness);
+/// Toe of a body: the largest x among particles whose column (x cut into strips of
+/// `column_width`, from x = 0) holds at least `min_depth` of material, its particles' lattice area
+/// dp^2 spread over the strip (every particle counts when min_depth <= 0).
+double front_position(const Particles& particles, int body, double spacing, double column_width,
+                      double min_depth);
 
 /// Period of an oscillation from its velocity samples: twice the mean interval between successive
 /// zero crossings (linear interpolation between samples); NaN before two crossings.

@@ -157,7 +157,9 @@ enum class MeasureAt { end, max, series, time };
 
 /// A quantity recorded during a run.
 ///  front: max x of the target body's particles (min_thickness: ignore particles in columns with
-///    fewer than that many spacings of material, so a lone particle does not count).
+///    fewer than that many spacings of material, so a lone particle does not count; or
+///    min_depth, in metres, over columns of column_width, so that the toe's definition does not
+///    shrink with the spacing).
 ///  height: max y of the body.
 ///  max_displacement: largest particle displacement of the body (component x | y | magnitude).
 ///  reaction: force of the soil on a wall or rigid body, component x | y | magnitude (N/m).
@@ -182,6 +184,8 @@ struct Measure {
   MeasureAt at = MeasureAt::end;
   double time = 0.0;           // s, at == time
   double min_thickness = 0.0;  // spacings, front only
+  double min_depth = 0.0;      // m, front only (instead of min_thickness)
+  double column_width = 0.0;   // m, front only; 0: the spacing
   std::string divide_by;       // "" or the name of another measure
   double scale = 1.0;
 };

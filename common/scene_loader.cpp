@@ -326,6 +326,11 @@ Measure read_measure(const std::string& name, SectionReader& r) {
   if (m.at == MeasureAt::time) m.time = r.number("time", non_negative("a time (s)"));
   if (m.kind == MeasureKind::front) {
     m.min_thickness = r.number("min_thickness", 0.0, non_negative("a count of spacings"));
+    m.min_depth = r.number("min_depth", 0.0, non_negative("a depth (m)"));
+    m.column_width = r.number("column_width", 0.0, non_negative("a width (m)"));
+    if (m.min_thickness > 0.0 && m.min_depth > 0.0) {
+      r.fail("min_depth", "given with min_thickness", "one of them: spacings or metres");
+    }
   }
   m.divide_by = r.string("divide_by", "");
   m.scale = r.number("scale", 1.0, any_number());

@@ -19,7 +19,8 @@
 //   [strength_reduction] factor (c and phi reduced, Peng 2015 eqs 39-40), rule = tangent | angle
 //   [measure.<name>] kind = front | height | reaction | wall_stress | max_displacement |
 //     displacement | period | safety_factor | expansion, target, component = x | y | magnitude,
-//     at = end | max | series | time (with time = ...), min_thickness, divide_by, scale
+//     at = end | max | series | time (with time = ...), min_thickness | min_depth, column_width,
+//     divide_by, scale
 //   [reference.<measure name>] value, source (required), tolerance
 //   [sph], [spfem], [spfem.implicit]: method options (common/scene.hpp has the defaults)
 

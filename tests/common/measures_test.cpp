@@ -43,8 +43,44 @@ TEST(FrontPosition, IgnoresColumnsThinnerThanTheMinimumThickness) {
                                            {0.015, 0.015},
                                            {0.015, 0.025},
                                            {0.045, 0.005}});
-  EXPECT_DOUBLE_EQ(front_position(p, 0, 0.01, 0.0), 0.045);
-  EXPECT_DOUBLE_EQ(front_position(p, 0, 0.01, 3.0), 0.015);
+  EXPECT_DOUBLE_EQ(front_position(p, 0, 0.01, 0.01, 0.0), 0.045);
+  EXPECT_DOUBLE_EQ(front_position(p, 0, 0.01, 0.01, 0.03), 0.015);
+}
+
+TEST(FrontPosition, ADepthInMetresCountsTheSameMaterialAtEverySpacing) {
+  // A deposit 2 cm deep from x = 0 to 0.1 m and a thin part from 0.1 to 0.2 m (rows below
+  // 7.5 mm: one at dp 5 mm, three at dp 2.5 mm): with a depth of 1 cm over 2 cm columns its toe
+  // is at the deep part's end at both spacings, where "3 spacings" moves with dp.
+  for (const double dp : {0.005, 0.0025}) {
+    std::vector<Vec2> positions;
+    for (double x = 0.5 * dp; x < 0.2; x += dp) {
+      const double depth = x < 0.1 ? 0.02 : 0.0075;
+      for (double y = 0.5 * dp; y < depth; y += dp) positions.emplace_back(x, y);
+    }
+    const Particles p = column_of_particles(positions);
+    EXPECT_NEAR(front_position(p, 0, dp, 0.02, 0.01), 0.1 - 0.5 * dp, 1e-12) << dp;
+    // the lattice column and "3 spacings": the thin part counts once 3 dp fit in it
+    const double toe = front_position(p, 0, dp, dp, 3.0 * dp);
+    EXPECT_NEAR(toe, dp < 0.004 ? 0.2 - 0.5 * dp : 0.1 - 0.5 * dp, 1e-12) << dp;
+  }
+}
+
+TEST(FrontPosition, AColumnOfLooseParticlesShorterThanTheDepthDoesNotCount) {
+  // Five particles scattered over one 2 cm column at dp 2 mm hold 1 mm of material spread
+  // over it: below 1 cm, so the toe stays at the deep part's end (x = 0.019); three of them in
+  // one 2 mm lattice column make "3 spacings" and move the toe 8 cm on.
+  std::vector<Vec2> positions;
+  const double dp = 0.002;
+  for (double x = 0.001; x < 0.02; x += dp) {
+    for (double y = 0.001; y < 0.02; y += dp) positions.emplace_back(x, y);
+  }
+  for (const Vec2 loose : {Vec2(0.0995, 0.001), Vec2(0.0985, 0.004), Vec2(0.0991, 0.009),
+                           Vec2(0.092, 0.001), Vec2(0.085, 0.002)}) {
+    positions.push_back(loose);
+  }
+  const Particles p = column_of_particles(positions);
+  EXPECT_NEAR(front_position(p, 0, dp, 0.02, 0.01), 0.019, 1e-12);
+  EXPECT_NEAR(front_position(p, 0, dp, dp, 3.0 * dp), 0.0995, 1e-12);
 }
 
 TEST(EvaluateMeasure, ExpansionIsTheRadialWallsRadiusOverItsFirst) {
