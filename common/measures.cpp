@@ -73,7 +73,9 @@ double front_position(const Particles& particles, int body, double spacing, doub
   const double area = spacing * spacing;
   const double min_count = min_depth > 0.0 ? min_depth * column_width / area * (1.0 - 1e-9) : 0.0;
   std::map<long, int> column_count;
-  auto column = [column_width](double x) { return static_cast<long>(std::floor(x / column_width)); };
+  auto column = [column_width](double x) {
+    return static_cast<long>(std::floor(x / column_width));
+  };
   if (min_count > 0.0) {
     for (std::size_t i = 0; i < particles.size(); ++i) {
       if (particles.body[i] == body) ++column_count[column(particles.position[i].x())];

@@ -8,8 +8,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "benchmarks/driver.hpp"
@@ -97,8 +97,7 @@ TEST(CollapseBenchmark, TheBarsFallWithoutArtificialViscosityBetweenBuisDummiesA
   // artificial viscosity at all, to t = 0.3 s (the flow's fast part; at dp 1 cm a particle later
   // slips through the free-slip back wall, at dp 2 mm alpha 0 loses one there at 0.12 s).
   const RunSummary run = run_collapse(
-      "collapse-bui.toml",
-      {"spacing=0.01", "sph.alpha=0", "sph.beta=0", "time.end_time=0.3"},
+      "collapse-bui.toml", {"spacing=0.01", "sph.alpha=0", "sph.beta=0", "time.end_time=0.3"},
       "duet-sph-collapse-bui-inviscid-" + std::to_string(::getpid()));
   // Assert: no energy is made: the kinetic energy stays below the work gravity has done (the
   // driver's check fails a run at twice that). A Coulomb wedge sliding on the Rankine plane,
@@ -117,11 +116,11 @@ TEST(CollapseBenchmark, TheBarsFallWithoutArtificialViscosityBetweenBuisDummiesA
   EXPECT_LT(share, 1.0);
   EXPECT_GT(share, 0.8 * wedge);
 
-  const RunSummary peng = run_collapse(
-      "collapse-bui.toml",
-      {"spacing=0.01", "sph.alpha=0", "sph.beta=0", "sph.wall_stress=sigma-max",
-       "time.end_time=0.3"},
-      "duet-sph-collapse-bui-inviscid-peng-" + std::to_string(::getpid()));
+  const RunSummary peng =
+      run_collapse("collapse-bui.toml",
+                   {"spacing=0.01", "sph.alpha=0", "sph.beta=0", "sph.wall_stress=sigma-max",
+                    "time.end_time=0.3"},
+                   "duet-sph-collapse-bui-inviscid-peng-" + std::to_string(::getpid()));
   EXPECT_EQ(peng.status, "failed") << "Peng's dummies no longer make energy here: update";
   EXPECT_NE(peng.failure_reason.find("made energy"), std::string::npos) << peng.failure_reason;
 }
