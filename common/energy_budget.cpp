@@ -63,7 +63,11 @@ void EnergyBudget::record(double time, const Particles& particles,
                           const std::vector<Reaction>& reactions) {
   double g = 0.0;
   for (std::size_t i = 0; i < particles.size(); ++i) {
-    g += particles.mass[i] * scene_.gravity.dot(particles.position[i] - initial_position_[i]);
+    // A node added during the run (espfem's spfem.wall_node_gap) carries its parents' mean
+    // displacement, and the mass it took from them: the work stays the same sum.
+    const Vec2 moved = i < initial_position_.size() ? Vec2(particles.position[i] - initial_position_[i])
+                                                    : particles.displacement[i];
+    g += particles.mass[i] * scene_.gravity.dot(moved);
   }
   gravity_work_ = g;
   const double dt = time - time_;

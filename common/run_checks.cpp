@@ -82,7 +82,9 @@ std::optional<StateProblem> StateChecks::check(const Particles& particles,
                               : 0.0;
     Vec2 lo, hi;
     bounding_box(points, lo, hi);
-    for (std::size_t i = 0; i < n; ++i) {
+    // A node added during the step (espfem's spfem.wall_node_gap, appended) has no path yet.
+    const std::size_t n_before = std::min(n, previous_position.size());
+    for (std::size_t i = 0; i < n_before; ++i) {
       const Vec2 from = growth != 0.0
                             ? moved_along_radius(previous_position[i], wall.centre, growth)
                             : Vec2(previous_position[i] + wall_motion);

@@ -251,6 +251,10 @@ struct SpfemOptions {
   // 1/2 (A0_e / 3) s_k M_e |F_e - Fbar_k|^2 per triangle and node
   // (spfem/stiffness_stabilisation.hpp); 0 = off.
   double stiffness_stabilisation = 0.0;
+  // espfem: linear bulk viscosity b1 (-), the pressure b1 rho c l tr(D) of explicit finite element
+  // codes (Abaqus/Explicit's, default 0.06 there; LS-DYNA's): it damps volumetric ringing and
+  // adds nothing to an isochoric flow; 0 = off.
+  double bulk_viscosity = 0.0;
   Remesh remesh = Remesh::every_step;
   double remesh_angle = 15.0;  // deg
   // remesh = angle: a triangle's limit is min(remesh_angle, fraction x its angle at the last
@@ -259,6 +263,10 @@ struct SpfemOptions {
   // The particles are cell-centred (shared with SPH), so the alpha shape lies dp/2 inside the
   // material; true: each surface node's smoothing cell is extended over that dp/2 layer.
   bool boundary_layer = true;
+  // espfem: a node is added between two nodes touching the same wall once they are more than
+  // wall_node_gap x dp apart (spfem/wall_node_insertion.hpp), so a wall that stretches the soil
+  // along it (the cavity) keeps a row of nodes about dp apart on it; 0 = off.
+  double wall_node_gap = 0.0;
 };
 
 /// [spfem.implicit] (Zhang 2018: Newton-Raphson with load steps and step cutting). An increment

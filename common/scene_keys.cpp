@@ -187,6 +187,10 @@ std::vector<SceneKey> make_keys() {
        "hourglass-type stiffness stabilisation of nodal integration (0: off)"},
       {"spfem", "remesh_angle_fraction", "number", "-", "0.0",
        "remesh = angle: limit min(remesh_angle, fraction x angle at the last remesh)"},
+      {"spfem", "bulk_viscosity", "number", "-", "0.0",
+       "espfem: linear bulk viscosity b1, pressure b1 rho c l tr(D) (0: off)"},
+      {"spfem", "wall_node_gap", "number", "-", "0.0",
+       "espfem: add a node between two nodes on one wall more than this x spacing apart (0: off)"},
       // --- [spfem.implicit] ---
       {"spfem.implicit", "tolerance", "number", "-", "1e-08", "Newton: relative residual"},
       {"spfem.implicit", "displacement_tolerance", "number", "-", "1e-10",

@@ -412,6 +412,8 @@ SpfemOptions read_spfem(SectionReader& r) {
       r.number("stabilisation", o.stabilisation, non_negative("a stabilisation weight (-)"));
   o.stiffness_stabilisation = r.number("stiffness_stabilisation", o.stiffness_stabilisation,
                                        non_negative("a stiffness stabilisation coefficient (-)"));
+  o.bulk_viscosity =
+      r.number("bulk_viscosity", o.bulk_viscosity, in_closed(0.0, 1.0, "a linear bulk viscosity (-)"));
   o.stress_increment_limit = r.number("stress_increment_limit", o.stress_increment_limit,
                                       non_negative("a relative stress increment per step (-)"));
   o.remesh = r.choice("remesh", {"every-step", "angle"}, "every-step") == "every-step"
@@ -422,6 +424,12 @@ SpfemOptions read_spfem(SectionReader& r) {
       r.number("remesh_angle_fraction", o.remesh_angle_fraction,
                in_closed(0.0, 1.0, "a fraction of a triangle's angle at its remesh (-)"));
   o.boundary_layer = r.boolean("boundary_layer", o.boundary_layer);
+  // Below 1.2 dp a row of nodes as sampled (dp apart) would be split at once.
+  o.wall_node_gap = r.number("wall_node_gap", o.wall_node_gap, [](double v) {
+    return v == 0.0 || (v >= 1.2 && v <= 3.0)
+               ? std::string()
+               : std::string("0 (off) or a multiple of dp in [1.2, 3] (-)");
+  });
   r.finish({"implicit"});
   return o;
 }

@@ -13,6 +13,7 @@
 #include "common/solver.hpp"
 #include "constitutive/objective.hpp"
 #include "constitutive/scene_models.hpp"
+#include "spfem/wall_node_insertion.hpp"
 
 namespace duet::spfem {
 
@@ -112,9 +113,14 @@ void ExplicitSolver::use_models(std::vector<std::unique_ptr<constitutive::Model>
 }
 
 double ExplicitSolver::time_step(const Particles& particles) {
-  const double dt = setup_.options.time_step == SpfemTimeStep::cell_size
-                        ? cell_size_time_step(particles)
-                        : gershgorin_time_step(particles);
+  double dt = setup_.options.time_step == SpfemTimeStep::cell_size
+                  ? cell_size_time_step(particles)
+                  : gershgorin_time_step(particles);
+  // Central differences with a damping ratio xi in the highest mode are stable for
+  // omega dt <= 2 (sqrt(1 + xi^2) - xi); the linear bulk viscosity's xi is b1 (Abaqus Theory
+  // Manual, "Explicit dynamic analysis": the stability limit with bulk viscosity).
+  const double b1 = setup_.options.bulk_viscosity;
+  if (b1 > 0.0) dt *= std::sqrt(1.0 + b1 * b1) - b1;
   // Stress increment: a hypoplastic node's stiffness grows with its stress, so a node near the
   // apex (little stress, much strain rate: a free-falling grain hitting the pile) stiffens by
   // up to exp(M / |sigma| |D| dt) within one step, far beyond what the start-of-step stiffness
@@ -308,8 +314,27 @@ void ExplicitSolver::add_stabilisation(const Particles& particles) {
 }
 
 void ExplicitSolver::assemble_forces(const Particles& particles) {
+  const double b1 = setup_.options.bulk_viscosity;
+  if (b1 > 0.0) {
+    // Linear bulk viscosity (Abaqus/Explicit's b1, LS-DYNA's): sigma + b1 rho c l tr(D) I, l =
+    // sqrt(A_k). Its power b1 rho c l tr(D)^2 A_k >= 0; an isochoric flow (the undrained soil's
+    // quasi-static one) has tr(D) = 0 and feels none of it, a volumetric ringing does.
+    const std::size_t n = particles.size();
+    viscous_stress_.resize(n);
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+    for (std::size_t k = 0; k < n; ++k) {
+      viscous_stress_[k] = particles.stress[k];
+      const double area = cells().area[k];
+      if (area > 0.0) {
+        const double eta = b1 * particles.density[k] * wave_speed_[k] * std::sqrt(area);
+        const double p = eta * velocity_gradient_[k].trace();
+        viscous_stress_[k](0, 0) += p;
+        viscous_stress_[k](1, 1) += p;
+      }
+    }
+  }
   // papers/004 explicit cycle step 6: F_int = sum_k B_k^T sigma_k A_k
-  internal_forces(cells(), particles.stress, internal_force_);
+  internal_forces(cells(), b1 > 0.0 ? viscous_stress_ : particles.stress, internal_force_);
   if (setup_.options.stabilisation > 0.0 && !mesh().triangles.empty()) {
     add_stabilisation(particles);
   } else {
@@ -410,6 +435,37 @@ void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
   counters_.contacts_max = std::max(counters_.contacts_max, n_contacts);
 }
 
+void ExplicitSolver::insert_nodes(Particles& particles) {
+  const std::vector<InsertedNode> added =
+      insert_wall_nodes(setup_.boundaries, discretisation_.geometry(), setup_.spacing,
+                        setup_.options.wall_node_gap, particles);
+  if (added.empty()) return;
+  counters_.inserted_nodes += static_cast<long>(added.size());
+  const std::size_t n = particles.size();
+  // The arrays the next step reads before it computes them anew (the time step reads the
+  // stiffness of the last stress update): the parents' means; the rest are refilled.
+  const auto mean = [](std::vector<double>& v, const InsertedNode& a) {
+    v[static_cast<std::size_t>(a.node)] = 0.5 * (v[static_cast<std::size_t>(a.parents[0])] +
+                                                 v[static_cast<std::size_t>(a.parents[1])]);
+  };
+  wave_speed_.resize(n, 0.0);
+  block_modulus_.resize(n, 0.0);
+  stiffening_.resize(n, 0.0);
+  for (const InsertedNode& a : added) {
+    mean(wave_speed_, a);
+    mean(block_modulus_, a);
+    mean(stiffening_, a);
+  }
+  velocity_gradient_.resize(n, Mat2::Zero());
+  internal_force_.resize(n, Vec2::Zero());
+  stabilisation_force_.resize(n, Vec2::Zero());
+  stiffness_force_.resize(n, Vec2::Zero());
+  reference_position_.resize(n, Vec2::Zero());
+  external_force_.resize(n, Vec2::Zero());
+  scratch_stress_.resize(n, Mat3::Zero());
+  scratch_force_.resize(n, Vec2::Zero());
+}
+
 double ExplicitSolver::energy(const Particles& particles) const {
   double e = stiffness_energy_;
   const std::size_t n = particles.size();
@@ -428,6 +484,7 @@ double ExplicitSolver::step(Particles& particles, double time) {
     ScopedTimer t(timers_, Phase::mesh);
     // The walls at t, for the wall strips of this step (integrate() reads the same geometry)
     discretisation_.place_boundaries(time, settling_);
+    if (setup_.options.wall_node_gap > 0.0 && !settling_) insert_nodes(particles);
     discretisation_.update(particles.position);
   }
   double dt = 0.0;
@@ -507,6 +564,9 @@ Json ExplicitSolver::diagnostics() const {
   j["stiffness_stabilisation"] = setup_.options.stiffness_stabilisation;
   j["stiffness_stabilisation_energy"] = stiffness_energy_;
   j["stress_limited_steps"] = c.stress_limited_steps;
+  j["bulk_viscosity"] = setup_.options.bulk_viscosity;
+  j["wall_node_gap"] = setup_.options.wall_node_gap;
+  j["inserted_nodes"] = c.inserted_nodes;
   j["energy_reference"] = c.energy_reference;
   j["energy_drift_max"] = c.energy_drift_max;
   const double steps = static_cast<double>(std::max(c.steps, 1L));

@@ -45,6 +45,7 @@ struct EspfemCounters {
   double energy_reference = 0.0;  // kinetic + 0.5 sum A_k sigma:eps after the first step
   double energy_drift_max = 0.0;  // max |E - E_ref| / E_ref since then
   long stress_limited_steps = 0;  // steps whose dt the stress-increment limit set
+  long inserted_nodes = 0;        // added along walls (spfem.wall_node_gap)
 };
 
 class ExplicitSolver {
@@ -99,6 +100,9 @@ class ExplicitSolver {
   void assemble_forces(const Particles& particles);
   void add_stabilisation(const Particles& particles);
   void integrate(Particles& particles, double time, double dt);
+  /// spfem.wall_node_gap: adds nodes along the walls where their row has drawn apart, and
+  /// extends the per-node arrays to them (the parents' means).
+  void insert_nodes(Particles& particles);
 
   EspfemSetup setup_;
   NodalDiscretisation discretisation_;   // boundaries, mesh, wall strips, smoothing cells
@@ -115,6 +119,7 @@ class ExplicitSolver {
   std::vector<Vec2> stabilisation_force_;
   std::vector<Vec2> external_force_;
   std::vector<Mat3> scratch_stress_;
+  std::vector<Mat3> viscous_stress_;  // sigma + the bulk viscosity's pressure (spfem.bulk_viscosity)
   std::vector<Vec2> scratch_force_;
   std::vector<double> triangle_area_;
   std::vector<Mat2> triangle_stress_;               // stabilising stress per triangle

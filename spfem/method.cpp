@@ -128,7 +128,12 @@ class EspfemMethod final : public Solver {
 
   Json diagnostics() const override { return solver_.diagnostics(); }
 
-  std::string resume_refusal() const override { return ""; }
+  std::string resume_refusal() const override {
+    return solver_.discretisation().options().wall_node_gap > 0.0
+               ? "spfem.wall_node_gap adds nodes as the run goes, and a frame does not say "
+                 "which nodes the run had added by then"
+               : "";
+  }
   void save_state(StateBag& state) const override { solver_.save_state(state); }
   void restore_state(const StateBag& state, const Particles& particles) override {
     solver_.restore_state(state, particles.size());

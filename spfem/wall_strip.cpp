@@ -70,7 +70,8 @@ void find_wall_strips(const AlphaMesh& mesh, const std::vector<Vec2>& points,
                       std::span<const BoundaryGeometry> geometry, double spacing,
                       double layer_depth, WallStrips& strips) {
   const std::size_t n = points.size();
-  if (strips.attached.size() != n) strips.attached.assign(n, 0);
+  // Nodes added since (spfem.wall_node_gap, appended) start unattached; the rest keep theirs.
+  if (strips.attached.size() != n) strips.attached.resize(n, 0);
   strips.touching.assign(n, 0);
   strips.edges.clear();
   const bool know_surface = mesh.surface.size() == n;
