@@ -183,6 +183,9 @@ struct Measure {
   std::string component;  // "x" | "y" | "magnitude"; "" where the kind has none
   MeasureAt at = MeasureAt::end;
   double time = 0.0;           // s, at == time
+  // s, at == time: the mean of the samples within time +- window / 2 (those the run reached)
+  // instead of the value at `time`; 0: the value at `time`
+  double window = 0.0;
   double min_thickness = 0.0;  // spacings, front only
   double min_depth = 0.0;      // m, front only (instead of min_thickness)
   double column_width = 0.0;   // m, front only; 0: the spacing

@@ -323,7 +323,10 @@ Measure read_measure(const std::string& name, SectionReader& r) {
   const std::vector<std::string> ats = {"end", "max", "series", "time"};
   const std::string at = r.choice("at", ats, "end");
   m.at = static_cast<MeasureAt>(std::find(ats.begin(), ats.end(), at) - ats.begin());
-  if (m.at == MeasureAt::time) m.time = r.number("time", non_negative("a time (s)"));
+  if (m.at == MeasureAt::time) {
+    m.time = r.number("time", non_negative("a time (s)"));
+    m.window = r.number("window", 0.0, non_negative("a duration (s)"));
+  }
   if (m.kind == MeasureKind::front) {
     m.min_thickness = r.number("min_thickness", 0.0, non_negative("a count of spacings"));
     m.min_depth = r.number("min_depth", 0.0, non_negative("a depth (m)"));

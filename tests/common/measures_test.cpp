@@ -134,6 +134,37 @@ TEST(MeasureRecorder, MaxTakesTheLargestMagnitudeAndTimeInterpolates) {
   EXPECT_NEAR(recorder.final_value("half"), 1.0, 1e-12);
 }
 
+TEST(MeasureRecorder, AWindowAtATimeTakesTheMeanThroughTheRinging) {
+  // A ramp 1 + t with a ringing of amplitude 0.2 and period 0.2 s on it, sampled every 0.01 s;
+  // at t = 0.55 the ringing is at its trough: the value there is 1.35, the ramp's 1.55
+  Scene scene;
+  scene.spacing = 0.01;
+  Body body;
+  body.name = "b";
+  scene.bodies.push_back(body);
+  Measure plain;
+  plain.name = "plain";
+  plain.kind = MeasureKind::max_displacement;
+  plain.target = "b";
+  plain.component = "x";
+  plain.at = MeasureAt::time;
+  plain.time = 0.55;
+  Measure windowed = plain;
+  windowed.name = "windowed";
+  windowed.window = 0.2;  // one period
+  scene.measures = {plain, windowed};
+  MeasureRecorder recorder(scene);
+  Particles p = column_of_particles({{0.0, 0.0}});
+  for (int k = 0; k <= 100; ++k) {
+    const double t = 0.01 * k;
+    p.displacement[0] = Vec2(1.0 + t + 0.2 * std::sin(2.0 * std::numbers::pi * t / 0.2), 0.0);
+    recorder.sample(t, p, {});
+  }
+  EXPECT_NEAR(recorder.final_value("plain"), 1.35, 1e-9);
+  // 20 or 21 samples over one period: the ringing cancels but for one end sample, 0.2 / 21
+  EXPECT_NEAR(recorder.final_value("windowed"), 1.55, 0.2 / 21.0 + 1e-12);
+}
+
 TEST(MeasureRecorder, AFactorOfSafetyIsNotScoredByOneRunAndTheOtherReferencesAre) {
   // A slope run at strength reduction factor 1.2: its safety_factor measure is that factor, which
   // says nothing against the slope's factor of safety (found by duet srf); its displacement is
