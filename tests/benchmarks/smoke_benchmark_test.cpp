@@ -147,12 +147,13 @@ const std::vector<SmokeCase> kCases = {
      "was sampled as its mean over the sample interval)"},
     {"footing-deep", "espfem", 0.25, Outcome::within, 0, "",
      "q/c_u at w/B 0.1 4.717, -8.3 % (+1.8 % from a single step's reaction)"},
-    {"cavity", "espfem", 0.5, Outcome::within, 0, "",
-     "p/c_u +6.6 %, +4.7 %, +7.0 % at a/a0 1.2, 1.5, 2 at dp 0.5 m (tolerance 10 %) with the "
-     "scene's viscous stabilisation 0.1; without it -15.0 %, -27.4 %, +1.4 %: the wall's contact "
-     "pressure rang by about +-40 % from sample to sample (RESULTS.md). It failed (the wall "
-     "passed through the nodes) until the wall's chords faced the soil and its vertices touched "
-     "nodes"},
+    {"cavity", "espfem", 0.5, Outcome::outside, 0.12, "",
+     "p/c_u +10.5 %, +8.0 %, +4.2 % at a/a0 1.2, 1.5, 2 at dp 0.5 m (tolerance 10 %): the "
+     "scene's bulk viscosity (b1 = 1), whose stress scales with the spacing, adds 4 % at a/a0 1.2 "
+     "here (+6.6 % without it) and nothing measurable from dp 0.25; at dp 0.2 and 0.175 all three "
+     "are within 5 % (RESULTS.md). Without the viscous stabilisation the wall's contact pressure "
+     "rang by about +-40 %; it failed (the wall passed through the nodes) until the wall's chords "
+     "faced the soil and its vertices touched nodes"},
     {"slope", "espfem", 0.5, Outcome::unscored, 0, "", "as slope through sph"},
 };
 
