@@ -65,8 +65,9 @@ void EnergyBudget::record(double time, const Particles& particles,
   for (std::size_t i = 0; i < particles.size(); ++i) {
     // A node added during the run (espfem's spfem.wall_node_gap) carries its parents' mean
     // displacement, and the mass it took from them: the work stays the same sum.
-    const Vec2 moved = i < initial_position_.size() ? Vec2(particles.position[i] - initial_position_[i])
-                                                    : particles.displacement[i];
+    const Vec2 moved = i < initial_position_.size()
+                           ? Vec2(particles.position[i] - initial_position_[i])
+                           : particles.displacement[i];
     g += particles.mass[i] * scene_.gravity.dot(moved);
   }
   gravity_work_ = g;

@@ -182,7 +182,7 @@ struct Measure {
   std::string target;
   std::string component;  // "x" | "y" | "magnitude"; "" where the kind has none
   MeasureAt at = MeasureAt::end;
-  double time = 0.0;           // s, at == time
+  double time = 0.0;  // s, at == time
   // s, at == time: the mean of the samples within time +- window / 2 (those the run reached)
   // instead of the value at `time`; 0: the value at `time`
   double window = 0.0;

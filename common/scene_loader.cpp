@@ -415,8 +415,8 @@ SpfemOptions read_spfem(SectionReader& r) {
       r.number("stabilisation", o.stabilisation, non_negative("a stabilisation weight (-)"));
   o.stiffness_stabilisation = r.number("stiffness_stabilisation", o.stiffness_stabilisation,
                                        non_negative("a stiffness stabilisation coefficient (-)"));
-  o.bulk_viscosity =
-      r.number("bulk_viscosity", o.bulk_viscosity, in_closed(0.0, 1.0, "a linear bulk viscosity (-)"));
+  o.bulk_viscosity = r.number("bulk_viscosity", o.bulk_viscosity,
+                              in_closed(0.0, 1.0, "a linear bulk viscosity (-)"));
   o.stress_increment_limit = r.number("stress_increment_limit", o.stress_increment_limit,
                                       non_negative("a relative stress increment per step (-)"));
   o.remesh = r.choice("remesh", {"every-step", "angle"}, "every-step") == "every-step"

@@ -119,7 +119,8 @@ class ExplicitSolver {
   std::vector<Vec2> stabilisation_force_;
   std::vector<Vec2> external_force_;
   std::vector<Mat3> scratch_stress_;
-  std::vector<Mat3> viscous_stress_;  // sigma + the bulk viscosity's pressure (spfem.bulk_viscosity)
+  std::vector<Mat3>
+      viscous_stress_;  // sigma + the bulk viscosity's pressure (spfem.bulk_viscosity)
   std::vector<Vec2> scratch_force_;
   std::vector<double> triangle_area_;
   std::vector<Mat2> triangle_stress_;               // stabilising stress per triangle

@@ -14,8 +14,7 @@ double arc_position(const std::vector<Vec2>& polyline, const Vec2& x) {
     const Vec2 a = polyline[s];
     const Vec2 d = polyline[s + 1] - a;
     const double length = d.norm();
-    const double t =
-        length > 0.0 ? std::clamp((x - a).dot(d) / (length * length), 0.0, 1.0) : 0.0;
+    const double t = length > 0.0 ? std::clamp((x - a).dot(d) / (length * length), 0.0, 1.0) : 0.0;
     const double distance = (a + t * d - x).squaredNorm();
     if (distance < best) {
       best = distance;
@@ -99,7 +98,8 @@ std::vector<InsertedNode> insert_wall_nodes(const std::vector<NodeBoundary>& bou
     for (std::size_t k = 0; k + 1 < row.size(); ++k) {
       const auto a = static_cast<std::size_t>(row[k].node);
       const auto c = static_cast<std::size_t>(row[k + 1].node);
-      if (particles.body[a] != particles.body[c] || particles.material[a] != particles.material[c]) {
+      if (particles.body[a] != particles.body[c] ||
+          particles.material[a] != particles.material[c]) {
         continue;
       }
       // Stretched, not sampled so: two neighbours on the row may have lain further apart than dp

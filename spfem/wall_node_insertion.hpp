@@ -24,7 +24,7 @@ namespace duet::spfem {
 
 /// The two nodes a new node came from.
 struct InsertedNode {
-  std::int32_t node;     // its index (appended)
+  std::int32_t node;  // its index (appended)
   std::int32_t parents[2];
 };
 

@@ -179,7 +179,8 @@ TEST(ExplicitSolver, BulkViscosityDampsABreathingBlockAndHardlyAPureShearOne) {
   // and three of the shear mode (2 L / c_s)
   const double nu = 0.49;
   const double duration = 0.06;  // s
-  const double breathing = energy_left(0.3, 1.0, nu, duration) / energy_left(0.0, 1.0, nu, duration);
+  const double breathing =
+      energy_left(0.3, 1.0, nu, duration) / energy_left(0.0, 1.0, nu, duration);
   const double shearing =
       energy_left(0.3, -1.0, nu, duration) / energy_left(0.0, -1.0, nu, duration);
   // b1 = 0.3 takes most of the breathing block's energy (measured 0.24 of the undamped run's)
