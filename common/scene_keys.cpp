@@ -130,7 +130,7 @@ std::vector<SceneKey> make_keys() {
       {"measure.<name>", "at", "string", "", "\"end\"", "end | max | series | time"},
       {"measure.<name>", "time", "number", "s", "(required for at = time)",
        "when the value is taken"},
-      {"measure.<name>", "window", "number", "s", "0.0",
+      {"measure.<name>", "window", "number", "s", "(0 for at = time)",
        "at = time: the mean of the samples within time +- window / 2 (0: the value at time)"},
       {"measure.<name>", "min_thickness", "number", "spacings", "(0 for front)",
        "front: ignore columns thinner than this"},
