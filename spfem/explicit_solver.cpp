@@ -395,15 +395,9 @@ void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
       Vec2 v_new = v + dt * f / m;  // central difference: velocity first
       found.clear();
       for (std::size_t b = 0; b < n_boundaries; ++b) {
-        const std::size_t before = found.size();
-        find_contacts(geometry[b], setup_.boundaries[b].rigid_body, static_cast<std::int32_t>(i),
-                      static_cast<std::int32_t>(b), particles.position[i], reach, depth, found);
-        NodeContact vertex;
-        if (found.size() == before && !setup_.boundaries[b].rigid_body &&
-            touch_wall_vertex(geometry[b], static_cast<std::int32_t>(i),
-                              static_cast<std::int32_t>(b), particles.position[i], reach, vertex)) {
-          found.push_back(vertex);  // a wall's convex vertex (the cavity's chords)
-        }
+        find_node_contacts(geometry[b], setup_.boundaries[b].rigid_body,
+                           static_cast<std::int32_t>(i), static_cast<std::int32_t>(b),
+                           particles.position[i], reach, depth, found);
       }
       for (const NodeContact& c : found) {
         const NodeBoundary& b = setup_.boundaries[static_cast<std::size_t>(c.boundary)];

@@ -122,13 +122,9 @@ std::vector<NodeConstraint> ImplicitSolver::find_constraints(const std::vector<V
       found.clear();
       const bool held = !boundary.rigid_body && (held_by_[i] & (std::uint64_t{1} << (b % 64)));
       const double r = held ? held_reach : reach;
-      find_contacts(geometry[b], boundary.rigid_body, std::int32_t(i), std::int32_t(b), x[i], r,
-                    depth, found);
-      NodeContact vertex;
-      if (found.empty() && !boundary.rigid_body &&
-          touch_wall_vertex(geometry[b], std::int32_t(i), std::int32_t(b), x[i], r, vertex)) {
-        found.push_back(vertex);  // the cavity at dp 0.25 failed at a/a0 1.24 without it
-      }
+      // with a wall's convex vertex: the cavity at dp 0.25 failed at a/a0 1.24 without it
+      find_node_contacts(geometry[b], boundary.rigid_body, std::int32_t(i), std::int32_t(b), x[i],
+                         r, depth, found);
       for (const NodeContact& c : found) {
         if (crossed_only && !(c.distance < 0.0)) continue;
         NodeConstraint k;

@@ -143,6 +143,18 @@ bool touch_wall_vertex(const BoundaryGeometry& geometry, std::int32_t node, std:
   return false;
 }
 
+void find_node_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32_t node,
+                        std::int32_t boundary, const Vec2& x, double reach, double depth,
+                        std::vector<NodeContact>& out) {
+  const std::size_t before = out.size();
+  find_contacts(geometry, rigid_body, node, boundary, x, reach, depth, out);
+  NodeContact vertex;
+  if (out.size() == before && !rigid_body &&
+      touch_wall_vertex(geometry, node, boundary, x, reach, vertex)) {
+    out.push_back(vertex);  // a wall's convex vertex (the cavity's chords)
+  }
+}
+
 bool project_on_boundary(const BoundaryGeometry& geometry, std::int32_t node, std::int32_t boundary,
                          const Vec2& x, double depth, double max_distance, NodeContact& out) {
   bool found = false;

@@ -91,6 +91,12 @@ std::int64_t first_node_crossing(const BoundaryGeometry& wall_at_end, const Vec2
 bool touch_wall_vertex(const BoundaryGeometry& geometry, std::int32_t node, std::int32_t boundary,
                        const Vec2& x, double reach, NodeContact& out);
 
+/// Every contact of `x` with the boundary as both solvers take them: find_contacts, and for a wall
+/// where that found none, its convex vertex (touch_wall_vertex). Appends to `out`.
+void find_node_contacts(const BoundaryGeometry& geometry, bool rigid_body, std::int32_t node,
+                        std::int32_t boundary, const Vec2& x, double reach, double depth,
+                        std::vector<NodeContact>& out);
+
 /// The segment of the boundary that `x` projects onto nearest to it on the soil side, with the
 /// signed distance in [-depth, max_distance]; false when there is none. (Wall strips: where an
 /// attached node sits against its wall.)

@@ -82,13 +82,8 @@ std::vector<InsertedNode> insert_wall_nodes(const std::vector<NodeBoundary>& bou
     for (std::size_t i = 0; i < n; ++i) {
       found.clear();
       const auto node = static_cast<std::int32_t>(i);
-      find_contacts(g, false, node, static_cast<std::int32_t>(b), particles.position[i], reach,
-                    depth, found);
-      NodeContact vertex;
-      if (found.empty() && touch_wall_vertex(g, node, static_cast<std::int32_t>(b),
-                                             particles.position[i], reach, vertex)) {
-        found.push_back(vertex);
-      }
+      find_node_contacts(g, false, node, static_cast<std::int32_t>(b), particles.position[i], reach,
+                         depth, found);
       if (found.empty()) continue;
       const NodeContact& c = found.front();
       row.push_back({arc_position(g.points, c.point), c.distance, node});

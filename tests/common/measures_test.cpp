@@ -104,21 +104,29 @@ TEST(EvaluateMeasure, ExpansionIsTheRadialWallsRadiusOverItsFirst) {
   EXPECT_NEAR(evaluate_measure(m, scene, Particles{}, {}, 4.0), 3.0, 1e-12);
 }
 
-TEST(MeasureRecorder, MaxTakesTheLargestMagnitudeAndTimeInterpolates) {
+/// A scene of one body "b" (dp 0.01), for the recorder's tests.
+Scene scene_of_body_b() {
   Scene scene;
   scene.spacing = 0.01;
   Body body;
   body.name = "b";
   scene.bodies.push_back(body);
-  auto displacement_measure = [](const char* name, MeasureAt at) {
-    Measure m;
-    m.name = name;
-    m.kind = MeasureKind::max_displacement;
-    m.target = "b";
-    m.component = "x";
-    m.at = at;
-    return m;
-  };
+  return scene;
+}
+
+/// The largest x displacement in body "b", taken `at`.
+Measure displacement_measure(const char* name, MeasureAt at) {
+  Measure m;
+  m.name = name;
+  m.kind = MeasureKind::max_displacement;
+  m.target = "b";
+  m.component = "x";
+  m.at = at;
+  return m;
+}
+
+TEST(MeasureRecorder, MaxTakesTheLargestMagnitudeAndTimeInterpolates) {
+  Scene scene = scene_of_body_b();
   const Measure peak = displacement_measure("peak", MeasureAt::max);
   Measure half = displacement_measure("half", MeasureAt::time);
   half.time = 0.5;
@@ -137,17 +145,8 @@ TEST(MeasureRecorder, MaxTakesTheLargestMagnitudeAndTimeInterpolates) {
 TEST(MeasureRecorder, AWindowAtATimeTakesTheMeanThroughTheRinging) {
   // A ramp 1 + t with a ringing of amplitude 0.2 and period 0.2 s on it, sampled every 0.01 s;
   // at t = 0.55 the ringing is at its trough: the value there is 1.35, the ramp's 1.55
-  Scene scene;
-  scene.spacing = 0.01;
-  Body body;
-  body.name = "b";
-  scene.bodies.push_back(body);
-  Measure plain;
-  plain.name = "plain";
-  plain.kind = MeasureKind::max_displacement;
-  plain.target = "b";
-  plain.component = "x";
-  plain.at = MeasureAt::time;
+  Scene scene = scene_of_body_b();
+  Measure plain = displacement_measure("plain", MeasureAt::time);
   plain.time = 0.55;
   Measure windowed = plain;
   windowed.name = "windowed";

@@ -148,7 +148,7 @@ TEST(ExplicitSolver, RigidTranslationLeavesStressZero) {
   }
 }
 
-/// Mechanical energy left after `steps` steps of a free 12 x 8 block released with the linear
+/// Mechanical energy left after `duration` (s) of a free 12 x 8 block released with the linear
 /// velocity field v = rate (x - c) along x and rate * sign (y - c) along y (sign +1: a dilatation,
 /// -1: an isochoric pure shear), as a fraction of its initial energy.
 double energy_left(double bulk_viscosity, double sign, double poisson, double duration) {
