@@ -1,6 +1,6 @@
 #pragma once
 // Drucker-Prager perfect plasticity with non-associated flow and a mean-stress tension cut-off
-// (Bui et al. 2008, as excerpted in papers/002: eqs 3-9; theory page constitutive/docs/
+// (Bui et al. 2008 eqs 3-9, as Bui et al. 2013 restates them; theory page constitutive/docs/
 // drucker_prager.md). Tension positive: I1 = tr(sigma) < 0 in compression, so the cone
 // f = alpha_phi I1 + sqrt(J2) - k_c is negative in the elastic domain under compression.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // simhypo-sand: the void-ratio dependent critical-state hypoplastic model for sand of the
-// simhypo-sand paper (papers/003, eqs 4-18), with the stress corrections of its sec 3.3 (eqs
+// simhypo-sand paper (simhypo-sand 2024, eqs 4-18), with the stress corrections of its sec 3.3 (eqs
 // 36-38). Theory page: constitutive/docs/simhypo_sand.md.
 //
 // Tension positive, as the paper writes eq 4: tr(sigma) < 0 in compression and the stiffness

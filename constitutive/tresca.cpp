@@ -110,7 +110,7 @@ void register_tresca(ModelRegistry& registry) {
                       p.require("cu", Range::positive(), "Pa", "undrained shear strength");
                   return std::make_unique<Tresca>(elastic, cu);
                 },
-                // Zhang 2018 footing (papers/004 fig 12a): rigidity index I_r = G/c_u = 33.4;
+                // Zhang 2018 footing (slides fig 12a): rigidity index I_r = G/c_u = 33.4;
                 // E/c_u = 100 with nu = 0.49 gives I_r = 33.6.
                 {{"E", 1e7}, {"nu", 0.49}, {"cu", 1e5}}});
 }

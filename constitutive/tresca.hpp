@@ -1,6 +1,6 @@
 #pragma once
 // Tresca perfect plasticity for undrained clay (total stress, cohesion c_u), the soil of the
-// Zhang 2018 footing and cavity benchmarks (papers/004). Theory page: constitutive/docs/tresca.md.
+// Zhang et al. 2018 footing and cavity benchmarks. Theory page: constitutive/docs/tresca.md.
 //
 // Yield f = sigma1 - sigma3 - 2 c_u (tension positive, sigma1 >= sigma2 >= sigma3), associated
 // flow; return mapping in principal stress space with the one-vector return to the main plane

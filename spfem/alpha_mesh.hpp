@@ -1,8 +1,8 @@
 #pragma once
-// The mesh of the smoothed particle finite element method (papers/004, "PFEM steps"; Yuan et al.
-// 2019; Zhang et al. 2018): a CGAL Delaunay triangulation of the particles (EPICK kernel, built
-// from a spatially sorted range), then the alpha criterion: a triangle is kept when its
-// circumradius is below alpha (alpha = alpha_factor x spacing). The kept triangles are the
+// The mesh of the smoothed particle finite element method (Zhang 2018 slides, "PFEM steps";
+// Yuan et al. 2019; Zhang et al. 2018): a CGAL Delaunay triangulation of the particles (EPICK
+// kernel, built from a spatially sorted range), then the alpha criterion: a triangle is kept when
+// its circumradius is below alpha (alpha = alpha_factor x spacing). The kept triangles are the
 // interior faces of CGAL::Alpha_shape_2 at the same alpha (checked in the tests), found at a
 // fraction of its cost. Free surfaces, separation and re-contact appear and vanish as the cloud
 // moves. The nodes are the particles; nothing here knows of materials or stresses.

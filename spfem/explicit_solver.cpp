@@ -199,7 +199,7 @@ double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
 }
 
 double ExplicitSolver::cell_size_time_step(const Particles& particles) const {
-  // papers/004 Algorithm 1 step 3 computes dt from the node volumes: l_min is the smallest
+  // Zhang 2018 slides, Algorithm 1 step 3, computes dt from the node volumes: l_min is the smallest
   // smoothing-cell size sqrt(A_k) over the nodes in the mesh, c_max the largest wave speed
   // sqrt(M / rho) over all nodes, M the bound on the tangent that `gershgorin` uses: K + 4G/3 for
   // elasticity and Drucker-Prager; the hypoplastic tangent_bound, whose L + N exceeds L's
@@ -225,7 +225,7 @@ double ExplicitSolver::cell_size_time_step(const Particles& particles) const {
   if (!(c_max > 0.0)) {
     throw NumericalFailure("espfem: no positive wave speed (every node has zero stiffness)");
   }
-  // papers/004 explicit cycle step 3: dt_cr = alpha l_min / c
+  // Zhang 2018 slides, explicit cycle step 3: dt_cr = alpha l_min / c
   return setup_.options.time_step_safety * l_min / c_max;
 }
 
@@ -239,7 +239,7 @@ void ExplicitSolver::update_stress(Particles& particles, double dt) {
     if (cells().area[i] > 0.0) {
       const Mat3 l = embed(velocity_gradient_[i]);
       const Mat3 d = sym(l);
-      // papers/004 explicit cycle step 5: sigma_dot = H(eps_dot, kappa), objective (Jaumann)
+      // Zhang 2018 slides, explicit cycle step 5: sigma_dot = H(eps_dot, kappa), Jaumann rate
       constitutive::update_stress(model, d * dt, skew(l) * dt, particles.stress[i], internal);
       model.correct(particles.stress[i], internal);
       particles.strain[i] += d * dt;
@@ -333,7 +333,7 @@ void ExplicitSolver::assemble_forces(const Particles& particles) {
       }
     }
   }
-  // papers/004 explicit cycle step 6: F_int = sum_k B_k^T sigma_k A_k
+  // Zhang 2018 slides, explicit cycle step 6: F_int = sum_k B_k^T sigma_k A_k
   internal_forces(cells(), b1 > 0.0 ? viscous_stress_ : particles.stress, internal_force_);
   if (setup_.options.stabilisation > 0.0 && !mesh().triangles.empty()) {
     add_stabilisation(particles);
@@ -382,7 +382,7 @@ void ExplicitSolver::integrate(Particles& particles, double time, double dt) {
     for (std::size_t i = 0; i < n; ++i) {
       const double m = particles.mass[i];
       const Vec2 v = particles.velocity[i];
-      // papers/004 explicit cycle step 7: M a = F_ext - F_int (+ body force m g)
+      // Zhang 2018 slides, explicit cycle step 7: M a = F_ext - F_int (+ body force m g)
       Vec2 f = external_force_[i] + m * setup_.gravity - internal_force_[i] -
                stabilisation_force_[i] - viscous * m * v;
       if (o.local_damping > 0.0) {
@@ -484,8 +484,8 @@ double ExplicitSolver::step(Particles& particles, double time) {
   double dt = 0.0;
   {
     ScopedTimer t(timers_, Phase::constitutive);
-    // papers/004 explicit cycle step 4: smoothed strain (rate) of the nodes, before dt, which
-    // the stress increment it gives also bounds
+    // Zhang 2018 slides, explicit cycle step 4: smoothed strain (rate) of the nodes, before dt,
+    // which the stress increment it gives also bounds
     smoothed_velocity_gradients(cells(), particles.velocity, velocity_gradient_);
     dt = time_step(particles);
     update_stress(particles, dt);

@@ -1,10 +1,10 @@
 #pragma once
-// The explicit SPFEM step (papers/004, "Computational cycle of eSPFEM", Algorithm 1; Yuan et al.
-// 2019): (re)mesh the nodes (Delaunay + alpha shape), build the node-based smoothing cells,
-// critical time step (Gershgorin bound, step 3), smoothed velocity gradients (step 4), stress
-// update through the shared constitutive library (step 5), internal forces (step 6), M a = F_ext -
-// F_int and the central-difference update of velocities then positions (step 7). Nodes are the
-// particles: stress and internal variables live on them. This class knows nothing of the scene
+// The explicit SPFEM step (Zhang 2018 slides, "Computational cycle of eSPFEM", Algorithm 1;
+// Yuan et al. 2019): (re)mesh the nodes (Delaunay + alpha shape), build the node-based smoothing
+// cells, critical time step (Gershgorin bound, step 3), smoothed velocity gradients (step 4),
+// stress update through the shared constitutive library (step 5), internal forces (step 6), M a =
+// F_ext - F_int and the central-difference update of velocities then positions (step 7). Nodes are
+// the particles: stress and internal variables live on them. This class knows nothing of the scene
 // file: spfem/method.cpp translates a Scene into an EspfemSetup.
 
 #include <array>

@@ -1,6 +1,6 @@
 #pragma once
-// The implicit SPFEM (papers/004, "Implicit SPFEM" and "Numerical procedure of iSPFEM"; Zhang,
-// Yuan & Dai 2018, Int. J. Geomech. 18(4) 04018010): updated Lagrangian and quasi-static. Per
+// The implicit SPFEM (Zhang 2018 slides, "Implicit SPFEM" and "Numerical procedure of iSPFEM";
+// Zhang et al. 2018): updated Lagrangian and quasi-static. Per
 // increment of the scene's time [t_n, t_n+1]: (re)mesh the nodes at their configuration x_n
 // (NodalDiscretisation, shared with the explicit solver), collect the walls and rigid bodies the
 // nodes touch as constraints (node_constraints.hpp: prescribed by the boundaries' motion over the

@@ -190,7 +190,7 @@ bool IncrementOperator::evaluate(const std::vector<Vec2>& u) {
     if (!s.allFinite()) return false;
   }
   ScopedTimer t(timers, Phase::assembly);
-  // papers/004 iSPFEM: F_int = sum_k B_L^(k)T sigma_k A^(k) on the current configuration
+  // Zhang 2018 slides, iSPFEM: F_int = sum_k B_L^(k)T sigma_k A^(k) on the current configuration
   internal_forces(discretisation_.cells(), stress_, internal_force_);
   if (!discretisation_.mesh().triangles.empty()) {
     for (Stabilisation& w : stabilisation_) {

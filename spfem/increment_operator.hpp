@@ -1,11 +1,11 @@
 #pragma once
-// The discrete operator of one implicit SPFEM increment (papers/004, "Implicit SPFEM": weak form,
-// K_ep + K_g, Newton-Raphson; Zhang, Yuan & Dai 2018): for the displacement u of the nodes over
-// the increment, the internal force F_int(u) = sum_k A_k(x) B_L,k(x)^T sigma_k(u) on the
+// The discrete operator of one implicit SPFEM increment (Zhang 2018 slides, "Implicit SPFEM":
+// weak form, K_ep + K_g, Newton-Raphson; Zhang et al. 2018): for the displacement u of the nodes
+// over the increment, the internal force F_int(u) = sum_k A_k(x) B_L,k(x)^T sigma_k(u) on the
 // configuration x = x_n + u (updated Lagrangian), with sigma_k(u) the shared objective stress
 // update (Hughes-Winget rotation, then the model) of the increment's gradient
 // G_k = sum_l u_l (x) b_kl(x_n) on the configuration at the increment's start, and its exact
-// tangent dF_int/du on the free dofs (../shared/notes/implicit-spfem.md):
+// tangent dF_int/du on the free dofs (derived for this project; spfem/README.md):
 //   K = sum_k A_k B_L,k^T [D_k B_L,k^0 + sigma_bar_k B_S,k^0]                 material + spin
 //     + sum_k sum_{e at k} w_ke [(sigma_k grad N_I^e) (x) grad N_J^e
 //                                - (sigma_k grad N_J^e) (x) grad N_I^e]         geometric

@@ -66,7 +66,7 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
   const bool from_scratch = remesh || cells_from_scratch_;
   if (!remesh && cells_from_scratch_) label_mesh(x.size(), mesh_);
   cells_from_scratch_ = false;
-  // papers/004 smoothing slides: A_k = sum_j A_e^j / 3, b_lh(x_k) = (1/A_k) sum_j A_e^j N_l,h^j
+  // Zhang 2018 slides, smoothing: A_k = sum_j A_e^j / 3, b_lh(x_k) = (1/A_k) sum_j A_e^j N_l,h^j
   // / 3. The particles are cell-centred (the particle at (i + 1/2) dp carries dp^2), so the mesh
   // through them lies dp/2 inside the material on every face: the boundary layer of depth dp/2
   // gives the surface cells the skin the mesh misses, so stiffness and the nodes' (particle) mass

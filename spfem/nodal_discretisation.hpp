@@ -1,5 +1,5 @@
 #pragma once
-// The nodal discretisation both SPFEM solvers compose (papers/004, "PFEM steps" and "Strain
+// The nodal discretisation both SPFEM solvers compose (Zhang 2018 slides, "PFEM steps", "Strain
 // smoothing technique"): the walls and rigid bodies at time t, the alpha mesh of the nodes (with
 // the remesh trigger), the wall strips and the node-based smoothing cells with their boundary
 // layer, and the mesh counters. The explicit solver (explicit_solver.hpp) updates it once per

@@ -1,6 +1,6 @@
 #pragma once
-// Walls and rigid bodies acting on the nodes of the explicit SPFEM (papers/004 explicit cycle,
-// step 7, with the boundary conditions applied to the nodal velocities). A node is in contact
+// Walls and rigid bodies acting on the nodes of the explicit SPFEM (Zhang 2018 slides, explicit
+// cycle step 7, with the boundary conditions applied to the nodal velocities). A node is in contact
 // with a boundary segment when it lies within half a spacing of it on the soil side (the lattice
 // puts the first row of nodes dp/2 off a wall) or has just crossed it. Conditions:
 //  - bonded (a no-slip wall): the node moves with the wall; it is fixed to it and never released,

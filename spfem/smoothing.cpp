@@ -36,7 +36,7 @@ TriangleTerms triangle_terms(const Triangle& t, const std::vector<Vec2>& points)
   const Vec2& c = points[t[2]];
   TriangleTerms terms;
   terms.area = 0.5 * cross(b - a, c - a);
-  // papers/004 "Strain smoothing technique": (1/3) A_e^j N_l,h^j for l = a, b, c
+  // Zhang 2018 slides, "Strain smoothing technique": (1/3) A_e^j N_l,h^j for l = a, b, c
   terms.weighted_gradient = {quarter_turn(c - b) / 6.0, quarter_turn(a - c) / 6.0,
                              quarter_turn(b - a) / 6.0};
   return terms;
@@ -128,7 +128,7 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
     const Triangle& t = triangles[cells.node_triangles.triangle[i]];
     const TriangleTerms& terms = cells.triangle_terms[cells.node_triangles.triangle[i]];
-    plain_area += terms.area / 3.0;  // papers/004 "Strain smoothing": A^(k) = (1/3) sum A_e^j
+    plain_area += terms.area / 3.0;  // Zhang 2018 slides: A^(k) = (1/3) sum A_e^j
     // Weight of grad N^e in this row: A_e / 3, plus the strips of e's surface edges at k
     // (weighted_gradient holds (A_e / 3) grad N^e, so the strips enter as a factor on it).
     double factor = 1.0;
@@ -218,7 +218,7 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   assert((row_end == row_begin || area > 0.0) && "a smoothing-cell area is not positive");
   cells.area[k] = area;
   if (area != 0.0) {  // signed areas: an inverted triangle still counts consistently
-    // papers/004 "Strain smoothing technique": b_lh(x_k) = (1/A^(k)) sum_j (1/3) A_e^j N_l,h^j
+    // Zhang 2018 slides, "Strain smoothing": b_lh(x_k) = (1/A^(k)) sum_j (1/3) A_e^j N_l,h^j
     for (Index entry = row_begin; entry < row_end; ++entry) cells.gradient[entry] /= area;
     for (Index entry = cells.wall_offset[k]; entry < cells.wall_offset[k + 1]; ++entry) {
       cells.wall_gradient[entry] /= area;
@@ -294,7 +294,7 @@ void smoothed_velocity_gradients(const SmoothingCells& cells, const std::vector<
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     Mat2 l_k = Mat2::Zero();
     for (Index entry = cells.offset[k]; entry < cells.offset[k + 1]; ++entry) {
-      // L_k(i, j) = sum_l v_l,i b_kl,j (papers/004 smoothed B applied to the nodal velocities)
+      // L_k(i, j) = sum_l v_l,i b_kl,j (Zhang 2018 slides: smoothed B on the nodal velocities)
       l_k.noalias() += velocity[cells.column[entry]] * cells.gradient[entry].transpose();
     }
     if (!cells.wall_offset.empty()) {
@@ -319,7 +319,7 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
     for (Index entry = cells.offset[l]; entry < cells.offset[l + 1]; ++entry) {
       const Index k = cells.column[entry];
       const Vec2& b_kl = cells.gradient[cells.transpose[entry]];
-      // papers/004 "Strain smoothing technique": F_int = sum_k B_L^(k)T sigma_k A^(k)
+      // Zhang 2018 slides, "Strain smoothing technique": F_int = sum_k B_L^(k)T sigma_k A^(k)
       f.noalias() += cells.area[k] * (stress[k].topLeftCorner<2, 2>() * b_kl);
     }
     force[l] = f;

@@ -1,5 +1,5 @@
 #pragma once
-// Node-based strain smoothing (papers/004, slides "Strain smoothing technique"; Liu et al. 2009
+// Node-based strain smoothing (Zhang 2018 slides, "Strain smoothing technique"; Liu et al. 2009
 // NS-FEM): node k's smoothing cell collects a third of each triangle around it,
 //   A_k = sum_e A_e / 3,   b_kl = (1 / A_k) sum_e (A_e / 3) grad N_l^e,
 // so the smoothed velocity gradient at a node is L_k = sum_l v_l (x) b_kl and the internal force

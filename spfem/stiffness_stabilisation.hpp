@@ -1,7 +1,7 @@
 #pragma once
 // Stiffness (hourglass-type) stabilisation of node-based strain smoothing (NS-FEM), total
 // Lagrangian and objective, in the spirit of the stabilised nodal integration of Puso & Solberg
-// 2006 and Puso, Chen, Zywicz & Elmer 2008 (neither paper is in ../shared/papers, so no equation
+// 2006 and Puso, Chen, Zywicz & Elmer 2008 (neither paper is at hand, so no equation
 // numbers are cited here). Nodal integration sees only the smoothed deformation Fbar_k of each
 // node; a mode whose element gradients differ from their nodes' means (hourglass, checkerboard)
 // costs it no energy, which leaves the body soft in bending. This adds the energy of that

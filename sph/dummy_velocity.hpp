@@ -2,8 +2,8 @@
 // Velocity of a no-slip dummy particle extrapolated through the wall (`sph.dummy_velocity =
 // "extrapolated"`): Morris, Fox & Zhu (1997) J. Comput. Phys. 136:214-226, the boundary
 // treatment for soil of Bui et al. (2008) Int. J. Numer. Anal. Meth. Geomech. 32:1537-1570 (ref
-// [18] of Peng 2015, whose section 4.2 simplifies it to v_dummy = v_wall). Neither paper is in
-// papers/ (papers/002 is a Bui 2013 excerpt without it), so no equation number is cited here.
+// [18] of Peng 2015, whose section 4.2 simplifies it to v_dummy = v_wall). Neither paper is at
+// hand (the excerpt Bui et al. 2013 lacks it), so no equation number is cited here.
 //
 // Seen from soil particle A at distance d_A in front of the wall, dummy B at d_B behind it gets
 // the velocity of the linear profile through A and the wall velocity at the wall,

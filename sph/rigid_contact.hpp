@@ -1,6 +1,6 @@
 #pragma once
 // Frictional contact between soil particles and rigid bodies with prescribed motion (simhypo-sand
-// paper, papers/003, eqs 39-40, after Wang et al.): a penalty force that pushes an intruding
+// 2024, eqs 39-40, after Wang et al.): a penalty force that pushes an intruding
 // particle back out within one step, F_n = 2 m / dt^2 d n (eq 39), and a Coulomb friction force
 // F_t = 2 m / dt^2 du_t (sticking) capped at mu |F_n| (sliding, eq 40).
 //
