@@ -90,9 +90,22 @@ void print_scene(const Scene& scene, std::ostream& out) {
         << (rb.velocity.empty() ? "" : ", moving") << ")\n";
   for (const Measure& m : scene.measures)
     out << "  measure " << m.name << " (" << to_string(m.kind) << ", " << to_string(m.at) << ")\n";
-  for (const Reference& r : scene.references)
-    out << "  scored: " << r.measure << " against " << format_number(r.value) << " (tolerance "
-        << format_number(100.0 * r.tolerance) << " %)\n";
+  for (const Reference& r : scene.references) {
+    out << "  scored: " << r.measure << " against ";
+    if (r.curve.empty()) {
+      out << format_number(r.value);
+    } else {
+      out << "the curve " << r.curve_file << " (" << r.curve.size() << " points, holds from "
+          << format_number(r.holds.x()) << " to " << format_number(r.holds.y()) << ")";
+    }
+    for (const Measure& m : scene.measures) {
+      if (m.name == r.measure && m.at == MeasureAt::curve) {
+        out << " over " << m.abscissa << " from " << format_number(m.x_window.x()) << " to "
+            << format_number(m.x_window.y());
+      }
+    }
+    out << " (tolerance " << format_number(100.0 * r.tolerance) << " %)\n";
+  }
 }
 
 /// One line per method: its step and steps (or increments) and memory.

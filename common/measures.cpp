@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "common/geometry.hpp"
+#include "common/reference_curve.hpp"
 
 namespace duet {
 
@@ -91,6 +92,31 @@ double front_position(const Particles& particles, int body, double spacing, doub
   return std::isfinite(front) ? front : kNaN;
 }
 
+Vec2 material_point_displacement(const Particles& particles, int body, const Vec2& point,
+                                 double radius) {
+  // u(X) = a + G (X - point) by least squares over the particles that start within `radius`
+  // (X = x - u); normal equations in the scaled offsets (X - point) / radius.
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 3, 2> rhs = Eigen::Matrix<double, 3, 2>::Zero();
+  int count = 0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (particles.body[i] != body) continue;
+    const Vec2 offset = (particles.position[i] - particles.displacement[i] - point) / radius;
+    if (offset.squaredNorm() > 1.0) continue;
+    const Eigen::Vector3d row(1.0, offset.x(), offset.y());
+    normal += row * row.transpose();
+    rhs += row * particles.displacement[i].transpose();
+    ++count;
+  }
+  const Eigen::LDLT<Eigen::Matrix3d> solve(normal);
+  if (count < 3 || solve.info() != Eigen::Success ||
+      !(std::abs(solve.vectorD().minCoeff()) > 1e-10 * solve.vectorD().cwiseAbs().maxCoeff())) {
+    return Vec2(kNaN, kNaN);  // too few particles about the point, or all on one line
+  }
+  const Eigen::Matrix<double, 3, 2> fit = solve.solve(rhs);
+  return fit.row(0).transpose();
+}
+
 double evaluate_measure(const Measure& measure, const Scene& scene, const Particles& particles,
                         const std::vector<Reaction>& reactions, double time) {
   double value = kNaN;
@@ -121,6 +147,11 @@ double evaluate_measure(const Measure& measure, const Scene& scene, const Partic
       value = largest;
       break;
     }
+    case MeasureKind::point_displacement:
+      value = component_of(material_point_displacement(particles, body_index(scene, measure.target),
+                                                       measure.point, 2.0 * scene.spacing),
+                           measure.component);
+      break;
     case MeasureKind::reaction:
       value = component_of(reaction_of(reactions, measure.target), measure.component);
       break;
@@ -225,6 +256,10 @@ double MeasureRecorder::final_value(const std::string& name) const {
       case MeasureAt::end:
       case MeasureAt::series:
         return series.back();
+      case MeasureAt::curve: {
+        const Measure& measure = scene_.measures[m];
+        return series_value_at(series_of(measure.abscissa), series, measure.x_window.y());
+      }
       case MeasureAt::max: {
         double largest = kNaN;
         for (double v : series) {
@@ -270,23 +305,60 @@ Json MeasureRecorder::final_values() const {
   return out;
 }
 
+const std::vector<double>& MeasureRecorder::series_of(const std::string& name) const {
+  for (std::size_t m = 0; m < scene_.measures.size(); ++m) {
+    if (scene_.measures[m].name == name) return columns_[m + 1];
+  }
+  throw std::logic_error("no measure " + name);  // the scene's validation names it
+}
+
+namespace {
+
+/// A curve measure's entry: the worst relative error over its window, where it is and its sign,
+/// the mean error, and the value and reference at the window's end.
+void score_curve_into(Json& entry, const Measure& measure, const Reference& ref,
+                      const std::vector<double>& x, const std::vector<double>& y) {
+  const CurveScore score = score_curve(x, y, measure.x_window, ref.curve, ref.value);
+  const double end = measure.x_window.y();
+  entry["value"] = series_value_at(x, y, end);
+  entry["reference"] = ref.curve.empty() ? ref.value : curve_value(ref.curve, end);
+  entry["rel_error"] = score.rel_error;
+  entry["signed_error"] = score.signed_error;
+  entry["worst_at"] = score.worst_at;
+  entry["mean_error"] = score.mean_error;
+  entry["scored_points"] = static_cast<double>(score.points);
+  Json window = Json::array();
+  window.push_back(measure.x_window.x());
+  window.push_back(end);
+  entry["window"] = window;
+  entry["abscissa"] = measure.abscissa;
+  entry["reached"] = score.reached;
+  if (!ref.curve_file.empty()) entry["curve"] = ref.curve_file;
+}
+
+}  // namespace
+
 Json MeasureRecorder::accuracy() const {
   Json out = Json::object();
   for (const auto& ref : scene_.references) {
+    const Measure& measure = *std::find_if(scene_.measures.begin(), scene_.measures.end(),
+                                           [&](const Measure& m) { return m.name == ref.measure; });
     // A factor of safety is found by a search over runs (duet srf), not by one run, whose
     // safety_factor is the strength-reduction factor it was given: not an accuracy.
-    const bool searched =
-        std::any_of(scene_.measures.begin(), scene_.measures.end(), [&](const Measure& m) {
-          return m.name == ref.measure && m.kind == MeasureKind::safety_factor;
-        });
-    if (searched) continue;
-    const double value = final_value(ref.measure);
-    const double error = std::abs(value - ref.value) / std::abs(ref.value);
+    if (measure.kind == MeasureKind::safety_factor) continue;
     Json entry = Json::object();
-    entry["value"] = value;
-    entry["reference"] = ref.value;
-    entry["rel_error"] = error;
+    if (measure.at == MeasureAt::curve) {
+      score_curve_into(entry, measure, ref, series_of(measure.abscissa), series_of(measure.name));
+    } else {
+      const double value = final_value(ref.measure);
+      entry["value"] = value;
+      entry["reference"] = ref.value;
+      entry["rel_error"] = std::abs(value - ref.value) / std::abs(ref.value);
+      entry["signed_error"] = (value - ref.value) / std::abs(ref.value);
+    }
+    const double error = entry["rel_error"].number();
     entry["source"] = ref.source;
+    if (ref.error > 0.0) entry["reference_error"] = ref.error;
     if (ref.tolerance > 0.0) {
       entry["tolerance"] = ref.tolerance;
       entry["passed"] = std::isfinite(error) && error <= ref.tolerance;

@@ -25,6 +25,13 @@ double evaluate_measure(const Measure& measure, const Scene& scene, const Partic
 double front_position(const Particles& particles, int body, double spacing, double column_width,
                       double min_depth);
 
+/// Displacement of the material point of `body` that starts at `point`: a linear least-squares
+/// fit of the displacements of the particles that start (x - u) within `radius` of it, so exact
+/// for a linear field and defined on the body's edge; NaN with fewer than three particles there
+/// or all on one line.
+Vec2 material_point_displacement(const Particles& particles, int body, const Vec2& point,
+                                 double radius);
+
 /// Period of an oscillation from its velocity samples: twice the mean interval between successive
 /// zero crossings (linear interpolation between samples); NaN before two crossings.
 double period_from_zero_crossings(const std::vector<double>& time,
@@ -44,12 +51,16 @@ class MeasureRecorder {
 
   /// One value per measure: the last sample (at = end | series), the largest in magnitude
   /// (at = max), or the series interpolated at the measure's time (at = time).
+  /// A curve (at = curve): the series at the end of its x_window, NaN when not reached.
   Json final_values() const;
   double final_value(const std::string& name) const;
+  /// The samples of one measure so far.
+  const std::vector<double>& series_of(const std::string& name) const;
 
-  /// {"<measure>": {"value", "reference", "rel_error", "source", "tolerance", "passed"}} for every
-  /// reference of the scene but a factor of safety's (found by `duet srf` over many runs: one
-  /// run's safety_factor is the factor it was given).
+  /// {"<measure>": {"value", "reference", "rel_error", "signed_error", "source", "tolerance",
+  /// "passed"}} for every reference of the scene but a factor of safety's (found by `duet srf`
+  /// over many runs: one run's safety_factor is the factor it was given). A curve's rel_error is
+  /// the largest over its window, with "worst_at", "mean_error", "window", "reached" beside it.
   Json accuracy() const;
 
   /// The samples so far into / from a frame's state (`duet run --resume`), keys "measures.*".

@@ -151,9 +151,12 @@ enum class MeasureKind {
   displacement,
   period,
   safety_factor,
-  expansion
+  expansion,
+  point_displacement
 };
-enum class MeasureAt { end, max, series, time };
+// curve: the series against another measure's series (its abscissa), scored over a window of
+// that abscissa against a reference curve or value (common/reference_curve.hpp).
+enum class MeasureAt { end, max, series, time, curve };
 
 /// A quantity recorded during a run.
 ///  front: max x of the target body's particles (min_thickness: ignore particles in columns with
@@ -167,13 +170,19 @@ enum class MeasureAt { end, max, series, time };
 ///    polyline; for a straight wall the chord is its length, and for a uniformly loaded curved
 ///    wall the resultant equals the pressure times the chord, so this is the mean pressure.
 ///  displacement: of a wall or rigid body, integrated from its velocity schedule.
+///  point_displacement: of the material point of the target body that starts at `point`
+///    (component x | y, signed, or magnitude), from the particles that start within two spacings
+///    of it by a linear least-squares fit (exact for a linear field; a point on the body's edge,
+///    such as a beam's tip at mid-depth, has no particle on it).
 ///  period: period of the oscillation of the body's centre of mass along component x | y, from
 ///    successive zero crossings of its velocity (elastic bar).
 ///  expansion: a radial wall's mean distance from its centre over that at t = 0 (a / a0 of a
 ///    cavity).
 ///  safety_factor: the run's strength_reduction.factor; a sweep over it (duet stability --vary
 ///    strength_reduction.factor=...) finds the factor at which the slope fails (Peng 2015 5.3).
-/// at: the value at the end, the maximum over the run, the whole series, or the value at `time`.
+/// at: the value at the end, the maximum over the run, the whole series, the value at `time`,
+/// or a curve: the series against the series of the measure `abscissa`, scored over `x_window`
+/// of it; its one value is the series at the window's end.
 /// divide_by: another measure; the recorded value is this one divided by that one (K0 as the
 /// ratio of a side wall's stress to the top plate's). scale multiplies the result (e.g. 1/c_u).
 struct Measure {
@@ -191,13 +200,23 @@ struct Measure {
   double column_width = 0.0;   // m, front only; 0: the spacing
   std::string divide_by;       // "" or the name of another measure
   double scale = 1.0;
+  Vec2 point = Vec2::Zero();     // m, point_displacement: where the material point starts
+  std::string abscissa;          // at == curve: the measure whose series is the curve's x
+  Vec2 x_window = Vec2::Zero();  // at == curve: [from, to] of the abscissa that is scored
 };
 
+/// What a measure is scored against: a value, or a curve of points (x, y) (read from a CSV file,
+/// common/reference_curve.hpp) for a measure with at = curve. A curve states the window of x
+/// where it holds and its own error (for a computed reference, its mesh convergence).
 struct Reference {
   std::string measure;
   double value = 0.0;
   std::string source;
-  double tolerance = 0.0;  // relative; 0: not scored pass/fail, only reported
+  double tolerance = 0.0;     // relative; 0: not scored pass/fail, only reported
+  std::vector<Vec2> curve;    // (x, y), x increasing; empty: the reference is `value`
+  std::string curve_file;     // where the curve was read from, as the scene gave it
+  Vec2 holds = Vec2::Zero();  // [from, to] of x where the curve holds
+  double error = 0.0;         // the reference's own relative error (0: not stated)
 };
 
 enum class SphKernel { cubic_spline, wendland_c2 };

@@ -11,6 +11,7 @@
 
 #include "common/geometry.hpp"
 #include "common/input_error.hpp"
+#include "common/reference_curve.hpp"
 #include "common/scene_keys.hpp"
 #include "common/scene_schema.hpp"
 #include "common/scene_validation.hpp"
@@ -299,9 +300,9 @@ Load read_load(const std::string& name, SectionReader& r) {
 Measure read_measure(const std::string& name, SectionReader& r) {
   Measure m;
   m.name = name;
-  const std::vector<std::string> kinds = {"front",       "height",           "reaction",
-                                          "wall_stress", "max_displacement", "displacement",
-                                          "period",      "safety_factor",    "expansion"};
+  const std::vector<std::string> kinds = {
+      "front",        "height", "reaction",      "wall_stress", "max_displacement",
+      "displacement", "period", "safety_factor", "expansion",   "point_displacement"};
   const std::string kind = r.choice("kind", kinds, std::nullopt);
   m.kind = static_cast<MeasureKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
   if (m.kind != MeasureKind::safety_factor) m.target = r.string("target");
@@ -314,18 +315,29 @@ Measure read_measure(const std::string& name, SectionReader& r) {
     case MeasureKind::max_displacement:
       m.component = r.choice("component", {"x", "y", "magnitude"}, "magnitude");
       break;
+    case MeasureKind::point_displacement:
+      m.component = r.choice("component", {"x", "y", "magnitude"}, std::nullopt);
+      m.point = r.vec2("point");
+      break;
     case MeasureKind::period:
       m.component = r.choice("component", {"x", "y"}, std::nullopt);
       break;
     default:
       break;
   }
-  const std::vector<std::string> ats = {"end", "max", "series", "time"};
+  const std::vector<std::string> ats = {"end", "max", "series", "time", "curve"};
   const std::string at = r.choice("at", ats, "end");
   m.at = static_cast<MeasureAt>(std::find(ats.begin(), ats.end(), at) - ats.begin());
   if (m.at == MeasureAt::time) {
     m.time = r.number("time", non_negative("a time (s)"));
     m.window = r.number("window", 0.0, non_negative("a duration (s)"));
+  }
+  if (m.at == MeasureAt::curve) {
+    m.abscissa = r.string("abscissa");
+    m.x_window = r.vec2("x_window");
+    if (!(m.x_window.y() > m.x_window.x())) {
+      r.fail("x_window", "not increasing", "[from, to] with to > from (the abscissa's unit)");
+    }
   }
   if (m.kind == MeasureKind::front) {
     m.min_thickness = r.number("min_thickness", 0.0, non_negative("a count of spacings"));
@@ -341,13 +353,51 @@ Measure read_measure(const std::string& name, SectionReader& r) {
   return m;
 }
 
-Reference read_reference(const std::string& measure, SectionReader& r) {
+/// A reference value, or a curve: `points` as given, else read from the CSV file `curve`
+/// (relative to the scene file's folder) and written into the resolved scene as `points`, so a
+/// run's own copy of its scene (run.h5, --resume) carries the curve it was scored against.
+Reference read_reference(const std::string& measure, SectionReader& r,
+                         const std::string& scene_file) {
   Reference ref;
   ref.measure = measure;
-  ref.value = r.number("value", any_number());
+  if (r.has("value")) ref.value = r.number("value", any_number());
+  if (r.has("curve")) {
+    ref.curve_file = r.string("curve");
+    if (!r.has("points")) {
+      std::filesystem::path file(ref.curve_file);
+      if (file.is_relative()) file = std::filesystem::path(scene_file).parent_path() / file;
+      ref.curve = read_reference_csv(file.lexically_normal().string());
+      toml::array resolved;
+      for (const Vec2& p : ref.curve) resolved.push_back(toml::array{p.x(), p.y()});
+      r.resolved().insert_or_assign("points", std::move(resolved));
+    }
+  }
+  if (r.has("points")) {
+    ref.curve = r.points("points", 2);
+    for (std::size_t k = 1; k < ref.curve.size(); ++k) {
+      if (!(ref.curve[k].x() > ref.curve[k - 1].x())) {
+        r.fail("points", "x not increasing at point " + std::to_string(k + 1),
+               "points [x, y] with x increasing");
+      }
+    }
+  }
+  if (r.has("value") == !ref.curve.empty()) {
+    r.fail(ref.curve.empty() ? "value" : "curve",
+           ref.curve.empty() ? "missing key" : "given with value",
+           "either a value or a curve (a CSV file of x, y)");
+  }
+  if (!ref.curve.empty()) {
+    ref.holds = r.vec2("holds", Vec2(ref.curve.front().x(), ref.curve.back().x()));
+    if (!(ref.holds.x() >= ref.curve.front().x() && ref.holds.y() <= ref.curve.back().x() &&
+          ref.holds.y() > ref.holds.x())) {
+      r.fail("holds", "outside the curve's x or not increasing",
+             "[from, to] within the curve's first and last x");
+    }
+  }
   ref.source = r.string("source");
   if (trim(ref.source).empty()) r.fail("source", "empty", "where the value comes from");
   ref.tolerance = r.number("tolerance", 0.0, non_negative("a relative tolerance (-)"));
+  ref.error = r.number("error", 0.0, non_negative("the reference's own relative error (-)"));
   r.finish();
   return ref;
 }
@@ -599,7 +649,10 @@ Scene read_scene(const toml::table& root, const SceneSource& source, const Mater
   scene.measures =
       read_collection<Measure>(r, "measure", kMeasureKeys, source, resolved, read_measure);
   scene.references =
-      read_collection<Reference>(r, "reference", kReferenceKeys, source, resolved, read_reference);
+      read_collection<Reference>(r, "reference", kReferenceKeys, source, resolved,
+                                 [&](const std::string& measure, SectionReader& ref) {
+                                   return read_reference(measure, ref, source.file);
+                                 });
 
   SectionReader domain = section("domain", kDomainKeys);
   fill_domain(scene, domain);

@@ -357,6 +357,8 @@ const char* to_string(MeasureKind k) {
       return "period";
     case MeasureKind::expansion:
       return "expansion";
+    case MeasureKind::point_displacement:
+      return "point_displacement";
     default:
       return "safety_factor";
   }
@@ -369,6 +371,8 @@ const char* to_string(MeasureAt a) {
       return "max";
     case MeasureAt::series:
       return "series";
+    case MeasureAt::curve:
+      return "curve";
     default:
       return "time";
   }

@@ -199,6 +199,7 @@ class Checker {
         case MeasureKind::height:
         case MeasureKind::period:
         case MeasureKind::max_displacement:
+        case MeasureKind::point_displacement:
           require_name(key, m.target, bodies, "body");
           break;
         case MeasureKind::wall_stress:
@@ -220,8 +221,32 @@ class Checker {
       }
       require_name("measure." + m.name + ".divide_by", m.divide_by, others, "measure");
     }
+    for (const Measure& m : scene_.measures) {
+      if (m.at != MeasureAt::curve) continue;
+      std::vector<std::string> others;
+      for (const Measure& o : scene_.measures) {
+        if (o.name != m.name && o.at != MeasureAt::curve) others.push_back(o.name);
+      }
+      require_name("measure." + m.name + ".abscissa", m.abscissa, others,
+                   "measure (not itself a curve)");
+    }
     for (const Reference& r : scene_.references) {
       require_name("reference." + r.measure, r.measure, measures, "measure");
+      if (r.curve.empty()) continue;
+      const Measure& m = *std::find_if(scene_.measures.begin(), scene_.measures.end(),
+                                       [&](const Measure& x) { return x.name == r.measure; });
+      if (m.at != MeasureAt::curve) {
+        fail("reference." + r.measure + ".curve",
+             "scores measure." + m.name + ", which is not a curve",
+             "a measure with at = \"curve\" (its abscissa and x_window)");
+      }
+      if (m.x_window.x() < r.holds.x() || m.x_window.y() > r.holds.y()) {
+        std::ostringstream what;
+        what << "measure." << m.name << ".x_window [" << m.x_window.x() << ", " << m.x_window.y()
+             << "] reaches outside the window where the curve holds [" << r.holds.x() << ", "
+             << r.holds.y() << "]";
+        fail("measure." + m.name + ".x_window", what.str(), "a window inside the reference's");
+      }
     }
     for (const Load& l : scene_.loads)
       require_name("load." + l.name + ".body", l.body, bodies, "body");

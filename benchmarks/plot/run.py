@@ -5,6 +5,8 @@ Usage: run.py RUN_DIR [FIELD]
   series.png              every measure of /series against time
   load_<target>.png       a wall's or rigid body's force against its displacement, when the scene
                           records both as series (a footing: load against settlement)
+  curve_<measure>.png     a measure with at = "curve" against its abscissa, with its reference
+                          curve or value and the scored window
   expansion_<target>.png  a radial wall's pressure against a / a0 (a cavity)
   collapse_<body>.png     a body's run-out and height against time (a collapse)
   snapshots_<FIELD>.png   the particles at the first, middle and last frame coloured by FIELD
@@ -28,7 +30,8 @@ import numpy as np  # noqa: E402
 
 UNITS = {  # of a measure kind, before its scale
     "front": "m", "height": "m", "reaction": "N/m", "wall_stress": "Pa",
-    "max_displacement": "m", "displacement": "m", "period": "s", "safety_factor": "-",
+    "max_displacement": "m", "displacement": "m", "point_displacement": "m", "period": "s",
+    "safety_factor": "-", "expansion": "-",
 }
 
 FIELD_UNITS = {  # of the one-column frame datasets (common/h5_writer.hpp)
@@ -217,6 +220,41 @@ def plot_collapse(run):
         run.save(fig, f"collapse_{body}.png")
 
 
+def plot_curves(run):
+    """Each measure with at = "curve" against its abscissa, with its reference (a curve or a
+    value) and the scored window shaded; the score from metrics.json in the legend."""
+    references = run.scene.get("reference", {})
+    accuracy = run.metrics.get("accuracy", {})
+    for name, m in run.scene.get("measure", {}).items():
+        abscissa = m.get("abscissa")
+        if m.get("at") != "curve" or name not in run.series or abscissa not in run.series:
+            continue
+        fig, ax = plt.subplots(figsize=(6.0, 4.2))
+        ax.plot(run.series[abscissa], run.series[name], lw=1.4, label=f"{name} ({run.label})")
+        ref = references.get(name, {})
+        lo, hi = (float(v) for v in m["x_window"])
+        if "points" in ref:
+            pts = np.array(ref["points"], dtype=float)
+            ax.plot(pts[:, 0], pts[:, 1], "k--", lw=1.0, label=wrap(ref.get("source", ""), 60))
+        elif "value" in ref:
+            ax.axhline(float(ref["value"]), color="k", ls="--", lw=1.0,
+                       label=wrap(ref.get("source", ""), 60))
+        ax.axvspan(lo, hi, color="0.85", alpha=0.5, lw=0, label="scored window")
+        score = accuracy.get(name, {})
+        error = score.get("rel_error")
+        if isinstance(error, (int, float)):
+            ax.plot([], [], " ", label=f"largest error {100 * error:.3g} % at "
+                    f"{abscissa} = {score.get('worst_at', float('nan')):.3g} "
+                    f"(signed {100 * score.get('signed_error', float('nan')):+.3g} %)")
+        ax.set_xlabel(f"{abscissa} ({unit_of(run.scene['measure'][abscissa])})")
+        ax.set_ylabel(f"{name} ({unit_of(m)})")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="lower right")
+        run.title(fig, f"{name} against {abscissa}")
+        fig.tight_layout(rect=(0, 0, 1, 0.9))
+        run.save(fig, f"curve_{name}.png")
+
+
 def plot_snapshots(run, field):
     if not run.frames:
         return
@@ -275,6 +313,7 @@ def main():
     field = sys.argv[2] if len(sys.argv) > 2 else "von_mises"
     plot_series(run)
     plot_load_displacement(run)
+    plot_curves(run)
     plot_expansion(run)
     plot_collapse(run)
     plot_snapshots(run, field)

@@ -198,5 +198,31 @@ TEST(MeasureRecorder, AFactorOfSafetyIsNotScoredByOneRunAndTheOtherReferencesAre
   EXPECT_NEAR(accuracy.find("moved")->find("rel_error")->number(), 0.2, 1e-12);
 }
 
+TEST(MaterialPointDisplacement, IsExactForALinearFieldAtABeamTipWhereNoParticleSits) {
+  // A beam 1 m x 0.1 m sampled at dp 0.0125 (cell centres: no particle at mid-depth, none at
+  // x = 1), displaced by u = (0.01 - 0.2 y, 0.05 + 0.3 x - 0.1 y): at its tip's mid-depth
+  // (1, 0.05) the displacement is (0, 0.345).
+  const double dp = 0.0125;
+  std::vector<Vec2> start;
+  for (double x = 0.5 * dp; x < 1.0; x += dp) {
+    for (double y = 0.5 * dp; y < 0.1; y += dp) start.emplace_back(x, y);
+  }
+  Particles p = column_of_particles(start);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec2 X = start[i];
+    p.displacement[i] = Vec2(0.01 - 0.2 * X.y(), 0.05 + 0.3 * X.x() - 0.1 * X.y());
+    p.position[i] = X + p.displacement[i];
+  }
+  const Vec2 u = material_point_displacement(p, 0, Vec2(1.0, 0.05), 2.0 * dp);
+  EXPECT_NEAR(u.x(), 0.0, 1e-13);
+  EXPECT_NEAR(u.y(), 0.345, 1e-13);
+  // The largest displacement is a corner particle's, not the centreline's.
+  double largest = 0.0;
+  for (const Vec2& d : p.displacement) largest = std::max(largest, std::abs(d.y()));
+  EXPECT_GT(largest - u.y(), 0.0);
+  // Away from the body: no particle, no value.
+  EXPECT_TRUE(std::isnan(material_point_displacement(p, 0, Vec2(2.0, 0.05), 2.0 * dp).y()));
+}
+
 }  // namespace
 }  // namespace duet
