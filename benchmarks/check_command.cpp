@@ -138,11 +138,13 @@ void add_check_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--method", args->method, "sph | espfem | ispfem (default: every one)");
   cmd->add_option("--spacing", args->spacing, "particle spacing dp (m), overrides the scene's");
   cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
-  cmd->add_flag("--force", args->force, "do not refuse a run estimated beyond the memory");
+  cmd->add_flag("--force", args->force,
+                "do not refuse a run estimated beyond the memory, or a modulus or strength that "
+                "looks like MPa or kPa written in Pa (as duet run --force)");
   cmd->callback([args, cmd, &exit_code] {
     std::vector<std::string> overrides = args->sets;
     if (cmd->count("--spacing") > 0) overrides.push_back(spacing_override(args->spacing));
-    const Scene scene = load_scene_checked(args->scene, overrides);
+    const Scene scene = load_scene_checked(args->scene, overrides, args->force);
     std::vector<const MethodInfo*> methods;
     if (args->method.empty()) {
       for (const auto& name : builtin_methods().names())

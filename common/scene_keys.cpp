@@ -93,6 +93,9 @@ std::vector<SceneKey> make_keys() {
        "nearest vertex: a cavity's soil)"},
       {"body.<name>", "lattice_centre", "[x, y]", "m", "(required for polar)",
        "centre of the polar lattice's rings"},
+      {"body.<name>", "crosses_walls", "boolean", "", "false",
+       "a wall through the body, or the body on a wall's far side, is meant (else refused at "
+       "load: the methods put soil on one side of each wall segment)"},
       // --- [wall.<name>] ---
       {"wall.<name>", "points", "[[x, y], ...]", "m", kReq,
        "polyline (closed when the last point repeats the first)"},
