@@ -64,6 +64,19 @@ TEST(ImplausibleParameters, MegapascalsAndKilopascalsWrittenInPascalsAreRefused)
   EXPECT_EQ(doubt_of("simhypo-sand", sand, "E_i"), true);
 }
 
+TEST(ParameterRanges, ADilatancyAboveFrictionIsRefusedWithTheRuleAndItsNumbers) {
+  try {
+    make_model("drucker-prager",
+               {{"E", 1e7}, {"nu", 0.3}, {"phi", 30.0}, {"psi", 35.0}, {"c", 0.0}}, "material.m");
+    FAIL() << "psi > phi accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("material.m.psi = 35: dilatancy angle (at most phi) must "
+                                         "lie in [0, phi] = [0, 30] (unit deg)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ImplausibleParameters, TheBenchmarkMaterialsSayNothing) {
   // collapse-bui's bars and footing's clay
   EXPECT_TRUE(
