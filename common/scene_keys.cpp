@@ -158,7 +158,8 @@ std::vector<SceneKey> make_keys() {
        "artificial stress coefficient against tensile instability (0: off)"},
       {"sph", "cfl", "number", "-", "0.05", "Courant number of the time step"},
       {"sph", "sound_speed", "number", "m/s", "100.0",
-       "sound speed of the time step (the larger of it and the model's P-wave speed)"},
+       "sound speed c_s of the time step (cfl h / c_s) and the viscosity (alpha c_s), used as "
+       "given (duet check prints it beside the soil's P-wave speed)"},
       {"sph", "wall_treatment", "string", "", "\"dummy\"", "dummy (layers of dummy particles)"},
       {"sph", "dummy_layers", "integer", "-", "3", "layers of dummy particles behind a wall"},
       {"sph", "wall_stress", "string", "", "\"sigma-max\"",

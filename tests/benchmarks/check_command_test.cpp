@@ -44,6 +44,24 @@ TEST(CheckCommand, BadInputIsExit2) {
   EXPECT_EQ(duet("check '" + kFooting + "' --method fem").status, 2);
 }
 
+TEST(CheckCommand, SaysSphsSoundSpeedIsTheScenesAsTheSolverUsesIt) {
+  // footing.toml's clay: P-wave speed sqrt((K + 4G/3) / rho) = 176 m/s (E 1 MPa, nu 0.497), above
+  // the scene's 100 m/s, which the solver keeps: its step is cfl 0.05 x 176 / 100 = 0.088
+  // Courant numbers against the P-wave
+  const Result r = duet("check '" + kFooting + "' --method sph");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("sound speed 100 m/s"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the sound speed is sph.sound_speed as given (the solver does not raise "
+                          "it to the soil's P-wave speed, here 176 m/s: the step is then 0.0882 "
+                          "Courant numbers against it, not cfl 0.05)"),
+            std::string::npos)
+      << r.output;
+  const Result fast = duet("check '" + kFooting + "' --method sph --set sph.sound_speed=200");
+  ASSERT_EQ(fast.status, 0) << fast.output;
+  EXPECT_NE(fast.output.find("sound speed 200 m/s"), std::string::npos) << fast.output;
+  EXPECT_NE(fast.output.find("P-wave speed, here 176 m/s)"), std::string::npos) << fast.output;
+}
+
 const std::string kBadScenes = std::string(DUET_SOURCE_DIR) + "/tests/data/bad-scenes/";
 
 TEST(CheckCommand, RefusesWhatRunRefusesWithTheSameMessage) {

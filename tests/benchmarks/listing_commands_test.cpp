@@ -246,6 +246,13 @@ TEST(ModelsListing, ARangeThatFollowsAnotherParameterIsListedAsItsRule) {
   EXPECT_NE(dp.find("c cot(phi), the apex"), std::string::npos) << dp;
 }
 
+TEST(KeysListing, SphsSoundSpeedIsUsedAsGiven) {
+  // sph/sph_solver.cpp takes sph.sound_speed as it is; no P-wave speed raises it
+  const std::string sph = keys_listing("sph");
+  EXPECT_EQ(sph.find("the larger of it and"), std::string::npos) << sph;
+  EXPECT_NE(sph.find("used as given"), std::string::npos) << sph;
+}
+
 TEST(MethodsListing, ListsEveryRegisteredMethodWithItsOptionTables) {
   const std::string listing = methods_listing();
   for (const std::string& name : builtin_methods().names()) {
