@@ -108,6 +108,24 @@ void print_scene(const Scene& scene, std::ostream& out) {
   }
 }
 
+/// Why SPH's sound speed is what it is: the solver takes sph.sound_speed as given (its time step,
+/// Peng 2015 eq 37, and Monaghan's viscosity alpha c_s); set beside the soil's P-wave speed, the
+/// step's Courant number against the fastest elastic wave.
+std::string sph_sound_speed_note(const Scene& scene, double wave_speed) {
+  std::ostringstream note;
+  note << "the sound speed is sph.sound_speed as given (the solver does not raise it to the "
+          "soil's P-wave speed";
+  if (wave_speed > 0.0) {
+    note << ", here " << about(wave_speed) << " m/s";
+    if (wave_speed > scene.sph.sound_speed) {
+      note << ": the step is then " << about(scene.sph.cfl * wave_speed / scene.sph.sound_speed)
+           << " Courant numbers against it, not cfl " << format_number(scene.sph.cfl);
+    }
+  }
+  note << ")";
+  return note.str();
+}
+
 /// One line per method: its step and steps (or increments) and memory.
 void print_method(const Scene& scene, const MethodInfo& method, double wave_speed,
                   std::ostream& out) {
@@ -120,7 +138,8 @@ void print_method(const Scene& scene, const MethodInfo& method, double wave_spee
     const double dt = scene.sph.cfl * h / scene.sph.sound_speed;
     line << "time step at most " << about(dt) << " s (cfl " << format_number(scene.sph.cfl)
          << " x h / sound speed " << format_number(scene.sph.sound_speed) << " m/s), at least "
-         << with_commas(std::ceil(scene.time.end_time / dt)) << " steps";
+         << with_commas(std::ceil(scene.time.end_time / dt)) << " steps; "
+         << sph_sound_speed_note(scene, wave_speed);
   } else if (method.name == "espfem" && wave_speed > 0.0) {
     // spfem/explicit_solver.cpp: dt = safety x cell size / P-wave speed (cell size about dp).
     const double dt = scene.spfem.time_step_safety * scene.spacing / wave_speed;
@@ -151,11 +170,13 @@ void add_check_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--method", args->method, "sph | espfem | ispfem (default: every one)");
   cmd->add_option("--spacing", args->spacing, "particle spacing dp (m), overrides the scene's");
   cmd->add_option("--set", args->sets, "override a scene key: dotted.key=value (repeatable)");
-  cmd->add_flag("--force", args->force, "do not refuse a run estimated beyond the memory");
+  cmd->add_flag("--force", args->force,
+                "do not refuse a run estimated beyond the memory, or a modulus or strength that "
+                "looks like MPa or kPa written in Pa (as duet run --force)");
   cmd->callback([args, cmd, &exit_code] {
     std::vector<std::string> overrides = args->sets;
     if (cmd->count("--spacing") > 0) overrides.push_back(spacing_override(args->spacing));
-    const Scene scene = load_scene_checked(args->scene, overrides);
+    const Scene scene = load_scene_checked(args->scene, overrides, args->force);
     std::vector<const MethodInfo*> methods;
     if (args->method.empty()) {
       for (const auto& name : builtin_methods().names())

@@ -100,7 +100,9 @@ std::pair<Scene, const MethodInfo*> recorded_run(const std::string& dir) {
   } catch (const std::runtime_error& e) {
     throw InputError("--resume " + dir + ": " + e.what());
   }
-  Scene scene = load_scene_checked_from_string(meta.scene_toml, h5 + ":/meta/scene_toml");
+  // The run was accepted when it started (with --force, if it needed it): not refused again.
+  Scene scene =
+      load_scene_checked_from_string(meta.scene_toml, h5 + ":/meta/scene_toml", {}, /*force=*/true);
   return {std::move(scene), &builtin_methods().find(meta.method)};
 }
 
@@ -137,7 +139,8 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args->out, "output folder (default runs/<scene>-<method>-dp<spacing>)");
   cmd->add_flag("--quiet", args->quiet, "no progress display");
   cmd->add_flag("--force", args->force,
-                "run even when the estimated memory exceeds the machine's (refused otherwise)");
+                "run even when the estimated memory exceeds the machine's, or a modulus or "
+                "strength looks like MPa or kPa written in Pa (refused otherwise)");
   cmd->add_flag("--no-plots", args->no_plots, "do not draw the run's charts at the end");
   cmd->add_option("--field", args->field,
                   "field the particle snapshots are coloured by (default von_mises)");
@@ -165,7 +168,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
       }
       std::vector<std::string> overrides = args->sets;
       if (cmd->count("--spacing") > 0) overrides.push_back(spacing_override(args->spacing));
-      loaded.emplace(load_scene_checked(args->scene, overrides));
+      loaded.emplace(load_scene_checked(args->scene, overrides, args->force));
       chosen = &builtin_methods().find(args->method);
       options.out_dir = args->out.empty() ? default_run_dir(*loaded, chosen->name) : args->out;
     }
@@ -215,6 +218,7 @@ struct CompareArgs {
   std::string out;
   std::string emit_jobs;
   int jobs = 1;
+  bool force = false;
 };
 
 }  // namespace
@@ -236,9 +240,12 @@ void add_compare_command(CLI::App& app, int& exit_code) {
                   "runs at once as child processes (default 1: wall times are the measured cost, "
                   "and runs side by side slow each other)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--force", args->force,
+                "run even when a run's estimated memory exceeds the machine's, or a modulus or "
+                "strength looks like MPa or kPa written in Pa (refused otherwise)");
   cmd->callback([args, &exit_code] {
     // Everything is checked before any run starts.
-    const Scene base = load_scene_checked(args->scene, args->sets);
+    const Scene base = load_scene_checked(args->scene, args->sets, args->force);
     const std::vector<double> spacings =
         args->spacings.empty() ? std::vector<double>{base.spacing} : parse_spacings(args->spacings);
     std::vector<std::string> method_names =
@@ -248,11 +255,11 @@ void add_compare_command(CLI::App& app, int& exit_code) {
     for (const auto& name : method_names) methods.push_back(&builtin_methods().find(name));
     std::vector<Scene> scenes;
     for (double dp : spacings)
-      scenes.push_back(load_scene_checked(args->scene, with_spacing(args->sets, dp)));
+      scenes.push_back(load_scene_checked(args->scene, with_spacing(args->sets, dp), args->force));
     if (args->target < 0.0)
       throw InputError("--target must be positive (relative error, e.g. 0.05)");
     for (const MethodInfo* method : methods) {
-      for (const Scene& scene : scenes) refuse_if_too_large(scene, *method, false);
+      for (const Scene& scene : scenes) refuse_if_too_large(scene, *method, args->force);
     }
 
     const std::string out = args->out.empty() ? "runs/compare-" + base.name : args->out;
@@ -263,6 +270,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
     grid.scene_name = base.name;
     grid.title = base.name;
     grid.target = args->target;
+    grid.force = args->force;
     for (const MethodInfo* method : methods) {
       for (const Scene& scene : scenes) {
         GridCell cell;
@@ -297,6 +305,7 @@ struct StabilityArgs {
   std::string out;
   std::string emit_jobs;
   int jobs = 0;  // 0: one per core
+  bool force = false;
 };
 
 /// Cartesian product of the varied keys' values.
@@ -341,6 +350,9 @@ void add_stability_command(CLI::App& app, int& exit_code) {
                   "cells at once as child processes, one thread each (default: one per core; 1: "
                   "in this process, one after another)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--force", args->force,
+                "run even when a cell's estimated memory exceeds the machine's, or a modulus or "
+                "strength looks like MPa or kPa written in Pa (refused otherwise)");
   cmd->callback([args, &exit_code] {
     const MethodInfo& method = builtin_methods().find(args->method);
     const auto cells_of = grid_of(args->vary);
@@ -348,8 +360,8 @@ void add_stability_command(CLI::App& app, int& exit_code) {
     for (const auto& cell : cells_of) {
       std::vector<std::string> overrides = args->sets;
       for (const auto& [key, value] : cell) overrides.push_back(key + "=" + value);
-      scenes.push_back(load_scene_checked(args->scene, overrides));
-      refuse_if_too_large(scenes.back(), method, false);
+      scenes.push_back(load_scene_checked(args->scene, overrides, args->force));
+      refuse_if_too_large(scenes.back(), method, args->force);
     }
     const std::string out =
         args->out.empty() ? "runs/stability-" + scenes.front().name + "-" + method.name : args->out;
@@ -359,6 +371,7 @@ void add_stability_command(CLI::App& app, int& exit_code) {
     grid.scene_file = std::filesystem::absolute(args->scene).lexically_normal().string();
     grid.scene_name = scenes.front().name;
     grid.title = scenes.front().name + " (" + method.name + ")";
+    grid.force = args->force;
     for (const auto& settings : cells_of) {
       GridCell cell;
       cell.method = method.name;

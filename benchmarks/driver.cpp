@@ -193,6 +193,12 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   const auto sampled_reactions = [&] {
     return inertial ? reaction_mean.take(solver->reactions()) : solver->reactions();
   };
+  // The load on each driven boundary at every sample, for the load-drop warning (run_warnings).
+  std::vector<BoundaryLoad> boundary_loads = driven_boundaries(scene);
+  const auto sample = [&](const std::vector<Reaction>& reactions) {
+    measures.sample(time, particles, reactions);
+    record_boundary_loads(scene, time, reactions, boundary_loads);
+  };
 
   // The largest |F| each wall and rigid body carried since the run began: a moving one that
   // carried none never touched the material (run_warnings).
@@ -220,6 +226,10 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     measures.save_state(state);
     reaction_mean.save_state(state);
     put(state, "driver.reaction_largest", largest_reaction);
+    for (const BoundaryLoad& b : boundary_loads) {
+      put(state, "driver.load_time." + b.name, b.time);
+      put(state, "driver.load." + b.name, b.load);
+    }
     budget.save_state(state);
     solver->save_state(state);
     return state;
@@ -271,6 +281,11 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       if (state.count("driver.reaction_largest") != 0) {
         get(state, "driver.reaction_largest", largest_reaction);
       }
+      for (BoundaryLoad& b : boundary_loads) {
+        if (state.count("driver.load." + b.name) == 0) continue;  // as above
+        get(state, "driver.load_time." + b.name, b.time);
+        get(state, "driver.load." + b.name, b.load);
+      }
       budget.restore_state(state);
       solver->restore_state(state, particles);
       solver->restart_point();
@@ -281,7 +296,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     previous_position = particles.position;
   } else {
     write_output(false, true);
-    measures.sample(time, particles, solver->reactions());
+    sample(solver->reactions());
     energy.record(time, kinetic_energy(particles));
   }
   std::optional<Progress> progress;
@@ -322,7 +337,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
       }
     }
     if (time >= next_sample) {
-      measures.sample(time, particles, sampled_reactions());
+      sample(sampled_reactions());
       next_sample += sample_interval;
     }
     if (time >= next_output) {
@@ -334,7 +349,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
     if ((interrupted_by = pending_interrupt()) != 0) break;
   }
   // The last state (or the state at failure) is always a frame, unless writing is what failed.
-  if (!failure) measures.sample(time, particles, sampled_reactions());
+  if (!failure) sample(sampled_reactions());
   if (!output_failed) write_output(true, false);
   const std::string status = failure ? "failed" : interrupted_by ? "interrupted" : "completed";
   if (interrupted_by) {
@@ -390,7 +405,7 @@ RunSummary run_scene(const Scene& scene, const MethodInfo& method, const RunOpti
   const std::vector<std::string> warnings =
       status == "completed"
           ? run_warnings(scene, solver->inertial(), energy, budget, time, metrics["diagnostics"],
-                         particles.size(), largest_by_name)
+                         particles.size(), largest_by_name, boundary_loads)
           : std::vector<std::string>{};
   Json warning_list = Json::array();
   for (const std::string& w : warnings) {

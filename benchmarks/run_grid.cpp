@@ -54,6 +54,7 @@ std::vector<std::string> run_arguments(const Grid& grid, const GridCell& cell,
   a.push_back(cell_folder(grid_dir, cell));
   a.push_back("--quiet");
   a.push_back("--no-plots");
+  if (grid.force) a.push_back("--force");
   return a;
 }
 
@@ -108,6 +109,7 @@ void write_grid(const std::string& grid_dir, const Grid& grid) {
   j["scene"] = grid.scene_name;
   j["title"] = grid.title;
   j["target"] = grid.target;
+  j["force"] = grid.force;
   Json cells = Json::array();
   for (const GridCell& c : grid.cells) {
     Json cell = Json::object();
@@ -142,6 +144,7 @@ Grid read_grid(const std::string& grid_dir) {
   grid.scene_name = text_of(j, "scene", path);
   grid.title = text_of(j, "title", path);
   if (const Json* t = j.find("target"); t && t->is_number()) grid.target = t->number();
+  if (const Json* f = j.find("force"); f && f->is_bool()) grid.force = f->boolean();
   const Json* cells = j.find("cells");
   if (!cells || !cells->is_array()) throw InputError(path + ": grid.json has no list 'cells'");
   for (const Json& c : cells->elements()) {
@@ -179,7 +182,7 @@ void run_grid(const Grid& grid, const std::string& grid_dir, int jobs) {
   if (jobs <= 1) {
     for (const GridCell& cell : grid.cells) {
       if (pending_interrupt()) break;
-      const Scene scene = load_scene_checked(grid.scene_file, cell.overrides);
+      const Scene scene = load_scene_checked(grid.scene_file, cell.overrides, grid.force);
       RunOptions options;
       options.out_dir = grid_dir + "/" + cell.dir;
       std::cerr << "duet: " << cell.dir << '\n';

@@ -28,6 +28,7 @@ struct Grid {
   std::string scene_name;
   std::string title;    // of the chart
   double target = 0.0;  // compare: --target
+  bool force = false;   // --force: every run takes it (values in a doubtful unit run as given)
   std::vector<GridCell> cells;
 };
 
@@ -37,7 +38,8 @@ void write_grid(const std::string& grid_dir, const Grid& grid);
 Grid read_grid(const std::string& grid_dir);
 
 /// The self-contained command that runs `cell`: the absolute path of this duet program, the
-/// scene, the method, every --set, --out GRID_DIR/<dir> (absolute), --quiet --no-plots.
+/// scene, the method, every --set, --out GRID_DIR/<dir> (absolute), --quiet --no-plots, and
+/// --force when the grid was given it.
 std::string job_command(const Grid& grid, const GridCell& cell, const std::string& grid_dir);
 /// One job_command per line into `path`.
 void write_job_file(const std::string& path, const Grid& grid, const std::string& grid_dir);

@@ -10,16 +10,22 @@
 
 namespace duet {
 
-/// The MaterialCheck that builds each material's model through constitutive::make_model.
-MaterialCheck model_material_check();
+/// The MaterialCheck that builds each material's model through constitutive::make_model and,
+/// unless `force`, refuses a value in a wrong unit beyond doubt (constitutive::UnitDoubt::refused:
+/// E = 20 meant in MPa), naming the key; `duet run`, `check` and `compare` pass --force here.
+MaterialCheck model_material_check(bool force = false);
 
 /// The override `--spacing DP` stands for ("spacing=DP"); throws InputError naming the option
 /// unless DP is a positive finite number (the loader would name `--set spacing=` instead).
 std::string spacing_override(double spacing);
 
-Scene load_scene_checked(const std::string& path, const std::vector<std::string>& overrides = {});
+/// Loads with model_material_check(force); the values in a doubtful unit that it lets through
+/// are said on stderr as warnings.
+Scene load_scene_checked(const std::string& path, const std::vector<std::string>& overrides = {},
+                         bool force = false);
 
 Scene load_scene_checked_from_string(const std::string& toml_text, const std::string& path,
-                                     const std::vector<std::string>& overrides = {});
+                                     const std::vector<std::string>& overrides = {},
+                                     bool force = false);
 
 }  // namespace duet

@@ -29,6 +29,7 @@ struct SrfArgs {
   double spacing = 0.0;
   std::vector<std::string> sets;
   std::string out;
+  bool force = false;
   SrfSearchOptions search;
   SettleCriterion settle;
   double floor_spacings = 0.01;
@@ -134,12 +135,15 @@ void add_srf_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--settle-floor", args->floor_spacings,
                   "... or by at most this many spacings (growth below it is noise; default 0.01)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--force", args->force,
+                "run even when the estimated memory exceeds the machine's, or a modulus or "
+                "strength looks like MPa or kPa written in Pa (refused otherwise)");
   cmd->callback([args, cmd, &exit_code] {
     std::vector<std::string> base = args->sets;
     if (cmd->count("--spacing") > 0) base.push_back(spacing_override(args->spacing));
-    const Scene scene = load_scene_checked(args->scene, base);
+    const Scene scene = load_scene_checked(args->scene, base, args->force);
     const MethodInfo& method = builtin_methods().find(args->method);
-    refuse_if_too_large(scene, method, false);
+    refuse_if_too_large(scene, method, args->force);
     const std::string measure = displacement_measure(scene);
     SettleCriterion settle = args->settle;
     settle.floor = args->floor_spacings * scene.spacing;
@@ -152,7 +156,8 @@ void add_srf_command(CLI::App& app, int& exit_code) {
     const auto run_trial = [&](double f) {
       std::vector<std::string> overrides = base;
       overrides.push_back("strength_reduction.factor=" + factor_text(f));
-      const Scene trial_scene = load_scene_checked(args->scene, overrides);
+      // The scene at full strength was checked above: a cohesion reduced below 1 Pa is meant.
+      const Scene trial_scene = load_scene_checked(args->scene, overrides, /*force=*/true);
       RunOptions options;
       options.out_dir = out + "/f=" + factor_text(f);
       options.show_progress = false;

@@ -52,6 +52,9 @@ struct Body {
   Vec2 initial_velocity = Vec2::Zero();
   LatticeKind lattice = LatticeKind::square;
   Vec2 lattice_centre = Vec2::Zero();  // polar only
+  // A wall through the body, or the body on a wall's far side, is meant: not refused at load
+  // (common/scene_validation.hpp, bodies_within_walls).
+  bool crosses_walls = false;
 };
 
 // symmetry: a free-slip plane of symmetry, which holds the normal motion both ways (the material

@@ -93,6 +93,9 @@ std::vector<SceneKey> make_keys() {
        "nearest vertex: a cavity's soil)"},
       {"body.<name>", "lattice_centre", "[x, y]", "m", "(required for polar)",
        "centre of the polar lattice's rings"},
+      {"body.<name>", "crosses_walls", "boolean", "", "false",
+       "a wall through the body, or the body on a wall's far side, is meant (else refused at "
+       "load: the methods put soil on one side of each wall segment)"},
       // --- [wall.<name>] ---
       {"wall.<name>", "points", "[[x, y], ...]", "m", kReq,
        "polyline (closed when the last point repeats the first)"},
@@ -170,7 +173,8 @@ std::vector<SceneKey> make_keys() {
        "artificial stress coefficient against tensile instability (0: off)"},
       {"sph", "cfl", "number", "-", "0.05", "Courant number of the time step"},
       {"sph", "sound_speed", "number", "m/s", "100.0",
-       "sound speed of the time step (the larger of it and the model's P-wave speed)"},
+       "sound speed c_s of the time step (cfl h / c_s) and the viscosity (alpha c_s), used as "
+       "given (duet check prints it beside the soil's P-wave speed)"},
       {"sph", "wall_treatment", "string", "", "\"dummy\"", "dummy (layers of dummy particles)"},
       {"sph", "dummy_layers", "integer", "-", "3", "layers of dummy particles behind a wall"},
       {"sph", "wall_stress", "string", "", "\"sigma-max\"",

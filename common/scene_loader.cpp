@@ -230,6 +230,7 @@ Body read_body(const std::string& name, SectionReader& r, const std::vector<Mate
   } else if (r.has("lattice_centre")) {
     r.fail("lattice_centre", "given with a square lattice", "lattice = \"polar\" to use it");
   }
+  b.crosses_walls = r.boolean("crosses_walls", false);
   r.finish();
   return b;
 }

@@ -1,8 +1,11 @@
 #include "common/scene_validation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <span>
 #include <sstream>
+#include <utility>
 
 #include "common/geometry.hpp"
 #include "common/input_error.hpp"
@@ -18,6 +21,87 @@ std::string point_text(const Vec2& p) {
   out.precision(6);
   out << "(" << p.x() << ", " << p.y() << ")";
   return out.str();
+}
+
+std::string length_text(double metres) {
+  std::ostringstream out;
+  out.precision(3);
+  out << metres << " m";
+  return out.str();
+}
+
+/// The part of the segment [a, b] inside the box [lo, hi] (Liang-Barsky), false when none.
+bool clip_to_box(Vec2& a, Vec2& b, const Vec2& lo, const Vec2& hi) {
+  double t0 = 0.0, t1 = 1.0;
+  const Vec2 d = b - a;
+  for (int k = 0; k < 2; ++k) {
+    for (const auto& [p, q] : {std::pair{-d[k], a[k] - lo[k]}, std::pair{d[k], hi[k] - a[k]}}) {
+      if (p == 0.0) {
+        if (q < 0.0) return false;
+        continue;
+      }
+      const double r = q / p;
+      if (p < 0.0) t0 = std::max(t0, r);
+      if (p > 0.0) t1 = std::min(t1, r);
+    }
+  }
+  if (t0 > t1) return false;
+  const Vec2 start = a + t0 * d;
+  b = a + t1 * d;
+  a = start;
+  return true;
+}
+
+/// The point of a polyline deepest inside a polygon (the farthest from its outline among the
+/// polyline's samples strictly inside it, taken every `step` along each segment's part within
+/// the polygon's bounding box, at most 10^4 of them: a load stays well under a second at any
+/// spacing), and its depth; depth 0 when no sample lies inside. The distance to the outline
+/// changes by at most the samples' spacing between them, so the depth found is within half of it
+/// of the true one.
+struct DeepestPoint {
+  double depth = 0.0;
+  Vec2 point = Vec2::Zero();
+};
+
+DeepestPoint deepest_point_inside(std::span<const Vec2> polyline, std::span<const Vec2> polygon,
+                                  double step) {
+  Vec2 lo, hi;
+  bounding_box(polygon, lo, hi);
+  DeepestPoint deepest;
+  for (std::size_t s = 0; s + 1 < polyline.size(); ++s) {
+    Vec2 a = polyline[s];
+    Vec2 b = polyline[s + 1];
+    if (!clip_to_box(a, b, lo, hi)) continue;
+    const int n = static_cast<int>(std::clamp(std::ceil((b - a).norm() / step), 1.0, 1e4));
+    for (int k = 0; k <= n; ++k) {
+      const Vec2 p = a + (b - a) * (static_cast<double>(k) / n);
+      if (!point_in_polygon(p, polygon)) continue;
+      const double depth = polygon_boundary_distance(p, polygon);
+      if (depth > deepest.depth) deepest = {depth, p};
+    }
+  }
+  return deepest;
+}
+
+/// Particles of each body within `reach` of a wall segment that project onto it, on the
+/// segment's left and right (the count by which SPH and SPFEM orient the segment).
+struct SideCounts {
+  std::vector<int> left, right;
+};
+
+SideCounts side_counts(const Vec2& a, const Vec2& b, const Particles& particles,
+                       std::size_t n_bodies, double reach) {
+  SideCounts counts{std::vector<int>(n_bodies, 0), std::vector<int>(n_bodies, 0)};
+  const Vec2 t = (b - a).normalized();
+  const Vec2 n(-t.y(), t.x());  // the left normal
+  const double length = (b - a).norm();
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const double u = (particles.position[i] - a).dot(t);
+    const double d = (particles.position[i] - a).dot(n);
+    if (u < 0.0 || u > length || std::abs(d) > reach) continue;
+    (d >= 0.0 ? counts.left : counts.right)[static_cast<std::size_t>(particles.body[i])] += 1;
+  }
+  return counts;
 }
 
 class Checker {
@@ -149,6 +233,75 @@ class Checker {
     }
   }
 
+  /// No wall passes through a body by more than half a spacing (the lattice's outer row lies dp/2
+  /// inside the drawn edge, so a wall within that depth has no particle beyond it), unless the
+  /// body says it is meant (crosses_walls).
+  void walls_outside_bodies() const {
+    const double dp = scene_.spacing;
+    for (const Body& b : scene_.bodies) {
+      if (b.crosses_walls) continue;
+      for (const Wall& w : scene_.walls) {
+        const DeepestPoint in = deepest_point_inside(w.points, b.outline, 0.1 * dp);
+        if (in.depth <= 0.5 * dp) continue;
+        fail("body." + b.name,
+             "wall '" + w.name + "' passes through the body: its point " + point_text(in.point) +
+                 " lies " + length_text(in.depth) +
+                 " inside the body's outline (more than half a spacing, " + length_text(0.5 * dp) +
+                 ")",
+             "each wall on one side of the body, touching it at most along its edge (or "
+             "crosses_walls = true in [body." +
+                 b.name + "] if the wall is meant to cut it)");
+      }
+    }
+  }
+
+  /// Each segment of a wall holds soil on one side: the side with more particles within reach
+  /// (SPH orients it by the soil within its kernel's support 2h, SPFEM within 2 dp; sph/walls.cpp,
+  /// spfem/node_contact.cpp). A body with particles on the other side lies beyond the wall: the
+  /// methods put the wall's dummy particles or contact there. Scenes over 2 million particles
+  /// are not sampled here (the crossing check above still holds for them).
+  void bodies_on_soil_side() const {
+    if (scene_.walls.empty() || estimated_particles(scene_) > 2.0e6) return;
+    const Particles particles = sample_bodies(scene_);
+    const double reach = std::max(2.0, 2.0 * scene_.sph.h_over_dp) * scene_.spacing;
+    const std::size_t n_bodies = scene_.bodies.size();
+    for (const Wall& w : scene_.walls) {
+      for (std::size_t s = 0; s + 1 < w.points.size(); ++s) {
+        const Vec2& a = w.points[s];
+        const Vec2& c = w.points[s + 1];
+        const SideCounts counts = side_counts(a, c, particles, n_bodies, reach);
+        int left = 0, right = 0;
+        for (std::size_t k = 0; k < n_bodies; ++k) {
+          left += counts.left[k];
+          right += counts.right[k];
+        }
+        if (left == right) continue;  // no soil, or a tie the methods settle by the neighbours
+        const std::vector<int>& beyond = left > right ? counts.right : counts.left;
+        const std::vector<int>& held = left > right ? counts.left : counts.right;
+        for (std::size_t k = 0; k < n_bodies; ++k) {
+          if (beyond[k] == 0 || scene_.bodies[k].crosses_walls) continue;
+          fail_beyond(w, a, c, k, beyond[k], held);
+        }
+      }
+    }
+  }
+
+  [[noreturn]] void fail_beyond(const Wall& w, const Vec2& a, const Vec2& c, std::size_t body,
+                                int n_beyond, const std::vector<int>& held) const {
+    std::size_t most = 0;
+    for (std::size_t k = 0; k < held.size(); ++k) {
+      if (held[k] > held[most]) most = k;
+    }
+    const std::string name = scene_.bodies[body].name;
+    fail("body." + name,
+         "lies beyond wall '" + w.name + "': " + std::to_string(n_beyond) +
+             " of its particles near the wall's segment " + point_text(a) + " - " + point_text(c) +
+             " are on its far side, away from the soil it holds (body '" +
+             scene_.bodies[most].name + "', " + std::to_string(held[most]) + " particles)",
+         "the body on the soil's side of every wall (or crosses_walls = true in [body." + name +
+             "] if it is meant)");
+  }
+
   /// A body must sample to enough particles to be a body at all: at 0 or 1 particles every
   /// measure of it is empty or NaN and no method has a gradient to compute.
   void bodies_resolved() const {
@@ -265,6 +418,8 @@ void validate_scene(const Scene& scene, const toml::table& root, const SceneSour
   check.bodies_inside_domain();
   check.bodies_resolved();
   check.no_overlaps();
+  check.walls_outside_bodies();
+  check.bodies_on_soil_side();
   check.bodies_supported();
   check.bodies_enclosed();
   check.names();

@@ -14,6 +14,9 @@ namespace duet {
 /// Rules:
 /// - every body lies inside the domain and samples to at least 4 particles at the spacing;
 /// - bodies do not overlap (they may touch along edges), and no rigid body overlaps a body;
+/// - no wall passes through a body by more than half a spacing, and no body lies on the far side
+///   of a wall segment (the side with fewer particles within reach: the side the methods put the
+///   wall's dummies and contact on), unless the body says `crosses_walls = true`;
 /// - under gravity, every body rests on something: the lowest point of its outline (the mean of
 ///   its lowest vertices along g) lies within one spacing of a wall, a rigid body or a body that
 ///   itself rests on something (no body floats free at t = 0, which would only be a fall);

@@ -295,16 +295,18 @@ void register_drucker_prager(ModelRegistry& registry) {
          const ElasticParameters elastic = ElasticParameters::read(p);
          const double phi =
              p.require("phi", Range::closed_open(0.0, 90.0), "deg", "friction angle");
-         const double psi =
-             p.require("psi", Range::closed(0.0, phi), "deg", "dilatancy angle (at most phi)");
+         const double psi = p.require("psi", Range::closed(0.0, phi).following("[0, phi]"), "deg",
+                                      "dilatancy angle (at most phi)");
          const double c = p.require("c", Range::non_negative(), "Pa", "cohesion");
          const DruckerPragerCone cone = DruckerPragerCone::from_coulomb(phi, psi, c);
          const double apex = cone.apex_mean_stress();
          const Range cutoff_range =
-             std::isfinite(apex) ? Range::closed(0.0, apex) : Range::non_negative();
+             (std::isfinite(apex) ? Range::closed(0.0, apex) : Range::non_negative())
+                 .following("[0, c cot(phi)] (>= 0 when phi = 0)");
          const double cutoff = p.optional("tension_cutoff", apex, cutoff_range, "Pa",
                                           "tension cut-off on the mean stress (at most the apex "
-                                          "c cot(phi))");
+                                          "c cot(phi))",
+                                          "c cot(phi), the apex");
          return std::make_unique<DruckerPrager>(elastic, cone, cutoff);
        },
        // Bui 2008 aluminium bars.

@@ -119,11 +119,13 @@ void register_mohr_coulomb(ModelRegistry& registry) {
                   const ElasticParameters elastic = ElasticParameters::read(p);
                   const double phi =
                       p.require("phi", Range::closed_open(0.0, 90.0), "deg", "friction angle");
-                  const double psi = p.require("psi", Range::closed(0.0, phi), "deg",
-                                               "dilatancy angle (at most phi)");
+                  const double psi = p.require("psi", Range::closed(0.0, phi).following("[0, phi]"),
+                                               "deg", "dilatancy angle (at most phi)");
                   // Without friction the cohesion is the whole strength: it must then be positive.
-                  const double c = p.require(
-                      "c", phi > 0.0 ? Range::non_negative() : Range::positive(), "Pa", "cohesion");
+                  const double c = p.require("c",
+                                             (phi > 0.0 ? Range::non_negative() : Range::positive())
+                                                 .following(">= 0 (> 0 when phi = 0)"),
+                                             "Pa", "cohesion");
                   return std::make_unique<MohrCoulomb>(elastic, phi, psi, c);
                 },
                 // A sand-like example: E 10 MPa, nu 0.3, phi 30, psi 0, cohesionless.

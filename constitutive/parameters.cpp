@@ -35,6 +35,14 @@ std::string Range::describe() const {
          (hi_open ? ")" : "]");
 }
 
+std::string Range::general() const {
+  return rule.empty() ? describe() : rule;
+}
+
+std::string Range::in_full() const {
+  return rule.empty() ? describe() : rule + " = " + describe();
+}
+
 Parameters::Parameters(std::string context, std::map<std::string, ParameterValue> values)
     : context_(std::move(context)), values_(std::move(values)) {}
 
@@ -55,7 +63,7 @@ void Parameters::note(ParameterSpec spec) {
 
 double Parameters::require(std::string_view name, Range range, std::string_view unit,
                            std::string_view meaning) {
-  note({std::string(name), "required", range.describe(), std::string(unit), "",
+  note({std::string(name), "required", range.general(), std::string(unit), "",
         std::string(meaning)});
   const auto it = values_.find(std::string(name));
   if (it == values_.end()) {
@@ -70,7 +78,7 @@ double Parameters::require(std::string_view name, Range range, std::string_view 
             ? ""
             : ", and '" + key(near) + "', which this model does not take, is probably it misspelt";
     throw InputError(key(name) + ": missing" + beside + "; " + std::string(meaning) +
-                     " is required (" + range.describe() + ", unit " + std::string(unit) + ")");
+                     " is required (" + range.in_full() + ", unit " + std::string(unit) + ")");
   }
   read_.insert(std::string(name));
   const double* v = std::get_if<double>(&it->second);
@@ -80,15 +88,17 @@ double Parameters::require(std::string_view name, Range range, std::string_view 
   }
   if (!range.contains(*v)) {
     throw InputError(key(name) + " = " + format_number(*v) + ": " + std::string(meaning) +
-                     " must lie in " + range.describe() + " (unit " + std::string(unit) + ")");
+                     " must lie in " + range.in_full() + " (unit " + std::string(unit) + ")");
   }
   resolved_[std::string(name)] = *v;
   return *v;
 }
 
 double Parameters::optional(std::string_view name, double fallback, Range range,
-                            std::string_view unit, std::string_view meaning) {
-  note({std::string(name), "optional", range.describe(), std::string(unit), format_number(fallback),
+                            std::string_view unit, std::string_view meaning,
+                            std::string_view fallback_rule) {
+  note({std::string(name), "optional", range.general(), std::string(unit),
+        fallback_rule.empty() ? format_number(fallback) : std::string(fallback_rule),
         std::string(meaning)});
   if (!has(name)) {
     resolved_[std::string(name)] = fallback;

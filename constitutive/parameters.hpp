@@ -16,12 +16,15 @@ namespace duet::constitutive {
 
 using duet::ParameterValue;
 
-/// An interval with open or closed ends; infinite ends allowed.
+/// An interval with open or closed ends; infinite ends allowed. A range whose bounds follow other
+/// parameters (a dilatancy angle at most phi) carries its `rule` ("[0, phi]"): what `duet models`
+/// lists, where the numbers would be those of one example.
 struct Range {
   double lo = -1e308;
   double hi = 1e308;
   bool lo_open = false;
   bool hi_open = false;
+  std::string rule = {};
 
   static Range closed(double lo, double hi) { return {lo, hi, false, false}; }
   static Range open(double lo, double hi) { return {lo, hi, true, true}; }
@@ -32,8 +35,17 @@ struct Range {
   static Range negative() { return {-1e308, 0.0, false, true}; }
   static Range any() { return {}; }
 
+  /// The same bounds with the rule they follow: Range::closed(0, phi).following("[0, phi]").
+  Range following(std::string text) const {
+    Range r = *this;
+    r.rule = std::move(text);
+    return r;
+  }
+
   bool contains(double v) const;
-  std::string describe() const;  // "[0, 0.5)", "> 0", ...
+  std::string describe() const;  // the numbers: "[0, 0.5)", "> 0", ...
+  std::string general() const;   // the rule where there is one, else describe()
+  std::string in_full() const;   // "[0, phi] = [0, 30]", or describe(): for messages
 };
 
 /// One parameter as a model's constructor read it: what `duet models` lists.
@@ -56,9 +68,10 @@ class Parameters {
   /// A required number in `range`; `unit` is printed in errors ("Pa", "deg", "-").
   double require(std::string_view name, Range range, std::string_view unit,
                  std::string_view meaning);
-  /// An optional number with its default.
+  /// An optional number with its default; `fallback_rule` names a default that follows other
+  /// parameters ("c cot(phi)") for `duet models`, where the number would be one example's.
   double optional(std::string_view name, double fallback, Range range, std::string_view unit,
-                  std::string_view meaning);
+                  std::string_view meaning, std::string_view fallback_rule = {});
   /// An optional word from `choices`.
   std::string choice(std::string_view name, const std::vector<std::string>& choices,
                      std::string_view fallback, std::string_view meaning);

@@ -45,13 +45,27 @@ void register_builtin_models(ModelRegistry& registry);
 /// The registry with every built-in model.
 const ModelRegistry& builtin_models();
 
-/// Values that are legal but almost surely in the wrong unit, one message each (empty when none):
-/// an angle (phi, psi) in (0, 1.6) looks like radians; a modulus (E, Ei) below 10 kPa like MPa or
-/// kPa; a strength (c, cu) in (0, 100) Pa like kPa; a density below 100 kg/m^3 like t/m^3.
+/// A legal value that is almost surely in the wrong unit.
+struct UnitDoubt {
+  std::string message;   // "material.sand.E = 20: ...": the key, the value, what was likely meant
+  bool refused = false;  // beyond doubt: refused before work unless the user says it is meant
+};
+
+/// Values that are legal but almost surely in the wrong unit, one each (empty when none).
+/// Refused (a bare number in MPa or kPa, which no soil has in Pa):
+///   a modulus (E, Ei, E_i) below 10 kPa: the softest soils (peat, soft clay) have 100 kPa and
+///     more, and a modulus in MPa (up to 10 GPa) written bare lands below it;
+///   an undrained strength cu in (0, 100) Pa: a remoulded clay at its liquid limit has 1-2 kPa,
+///     and a bare number in kPa up to 100 lands below it;
+///   a cohesion c in (0, 1) Pa: a cohesion in MPa written bare (0.01 for 10 kPa).
+/// Said only (they can be meant):
+///   an angle (phi, psi) in (0, 1.6) looks like radians; a modulus in [10, 100) kPa like kPa;
+///   cu in [100, 1000) Pa like kPa (a quick clay's remoulded strength can be that low); c in
+///   [1, 100) Pa like kPa (a few Pa of cohesion is a known device in granular-flow runs); a
+///   density below 100 kg/m^3 like t/m^3.
 /// `context` prefixes each (e.g. "material.sand").
-std::vector<std::string> implausible_parameters(
-    const std::map<std::string, ParameterValue>& resolved, double density,
-    const std::string& context);
+std::vector<UnitDoubt> implausible_parameters(const std::map<std::string, ParameterValue>& resolved,
+                                              double density, const std::string& context);
 
 /// Convenience: find by name, build from values, check unknown keys. `context` prefixes messages.
 std::unique_ptr<Model> make_model(const std::string& name,

@@ -3,6 +3,7 @@
 // steps, the count the run itself takes when nothing else limits its step.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "tests/benchmarks/child_run.hpp"
@@ -41,6 +42,70 @@ TEST(CheckCommand, RefusesWhatWouldNotFitUnlessForced) {
 TEST(CheckCommand, BadInputIsExit2) {
   EXPECT_EQ(duet("check '" + kFooting + "' --spacing 0").status, 2);
   EXPECT_EQ(duet("check '" + kFooting + "' --method fem").status, 2);
+}
+
+TEST(CheckCommand, SaysSphsSoundSpeedIsTheScenesAsTheSolverUsesIt) {
+  // footing.toml's clay: P-wave speed sqrt((K + 4G/3) / rho) = 176 m/s (E 1 MPa, nu 0.497), above
+  // the scene's 100 m/s, which the solver keeps: its step is cfl 0.05 x 176 / 100 = 0.088
+  // Courant numbers against the P-wave
+  const Result r = duet("check '" + kFooting + "' --method sph");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("sound speed 100 m/s"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the sound speed is sph.sound_speed as given (the solver does not raise "
+                          "it to the soil's P-wave speed, here 176 m/s: the step is then 0.0882 "
+                          "Courant numbers against it, not cfl 0.05)"),
+            std::string::npos)
+      << r.output;
+  const Result fast = duet("check '" + kFooting + "' --method sph --set sph.sound_speed=200");
+  ASSERT_EQ(fast.status, 0) << fast.output;
+  EXPECT_NE(fast.output.find("sound speed 200 m/s"), std::string::npos) << fast.output;
+  EXPECT_NE(fast.output.find("P-wave speed, here 176 m/s)"), std::string::npos) << fast.output;
+}
+
+const std::string kBadScenes = std::string(DUET_SOURCE_DIR) + "/tests/data/bad-scenes/";
+
+TEST(CheckCommand, RefusesWhatRunRefusesWithTheSameMessage) {
+  // issue 44: a body running 0.5 m past a wall, E = 20 meant in MPa; `duet run` refuses them
+  // with exit 2 (BadScene in scenes_test.cpp), before any work, and so does `duet check`.
+  for (const char* name : {"body-crossing-wall", "body-beyond-wall", "modulus-in-megapascals",
+                           "strength-in-kilopascals"}) {
+    const std::string path = kBadScenes + name + ".toml";
+    const Result check = duet("check '" + path + "'");
+    const Result run = duet("run '" + path + "' --method ispfem --out /nonexistent/never-written");
+    EXPECT_EQ(check.status, 2) << check.output;
+    EXPECT_EQ(run.status, 2) << run.output;
+    const std::string message = check.output.substr(0, check.output.find('\n'));
+    EXPECT_NE(message.find(path + ":"), std::string::npos) << message;
+    EXPECT_NE(run.output.find(message), std::string::npos) << run.output;
+  }
+}
+
+TEST(CheckCommand, AModulusInMegapascalsIsTakenWithForceAndSaidAsAWarning) {
+  const std::string path = kBadScenes + "modulus-in-megapascals.toml";
+  const Result refused = duet("check '" + path + "'");
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("material.sand.E = 20: a modulus below 10 kPa"), std::string::npos)
+      << refused.output;
+  EXPECT_NE(refused.output.find("or --force if it is meant"), std::string::npos) << refused.output;
+  const Result forced = duet("check '" + path + "' --force");
+  EXPECT_EQ(forced.status, 0) << forced.output;
+  EXPECT_NE(forced.output.find("duet: warning: " + path +
+                               ": material.sand.E = 20: a modulus below 10 kPa"),
+            std::string::npos)
+      << forced.output;
+  // compare takes --force too, and hands it to every run it starts
+  const std::string jobs = ::testing::TempDir() + "duet-force-jobs.txt";
+  const std::string out = ::testing::TempDir() + "duet-force-compare";
+  EXPECT_EQ(
+      duet("compare '" + path + "' --methods sph --out '" + out + "' --emit-jobs '" + jobs + "'")
+          .status,
+      2);
+  const Result compare = duet("compare '" + path + "' --methods sph --out '" + out +
+                              "' --emit-jobs '" + jobs + "' --force");
+  EXPECT_EQ(compare.status, 0) << compare.output;
+  EXPECT_NE(test::read_text(jobs).find(" '--force'"), std::string::npos) << test::read_text(jobs);
+  std::filesystem::remove(jobs);
+  std::filesystem::remove_all(out);
 }
 
 }  // namespace

@@ -208,7 +208,9 @@ TEST(ModelsListing, EveryRequiredParameterIsRequiredByTheModel) {
             EXPECT_NE(std::string(e.what()).find(spec.name), std::string::npos) << e.what();
           }
         } else if (spec.kind == "optional") {
-          // Set to its listed default, it is accepted.
+          // Set to its listed default, it is accepted (a default that follows other parameters
+          // is listed as its rule, "c cot(phi), the apex").
+          if (spec.fallback.find_first_not_of("0123456789.-+e") != std::string::npos) continue;
           auto with = form;
           with[spec.name] = std::stod(spec.fallback);
           EXPECT_NO_THROW(constitutive::make_model(info.name, with, info.name))
@@ -228,6 +230,27 @@ TEST(ModelsListing, HypoplasticListsBothForms) {
   for (const char* p : {"Ei", "nu", "phi", "psi", "c1", "c2", "c3", "c4"}) {
     EXPECT_NE(listing.find(std::string("    ") + p + " "), std::string::npos) << p;
   }
+}
+
+TEST(ModelsListing, ARangeThatFollowsAnotherParameterIsListedAsItsRule) {
+  // Read from the example, psi's range was the example's phi: [0, 19.8] for drucker-prager
+  for (const char* model : {"drucker-prager", "mohr-coulomb"}) {
+    const std::string listing = models_listing(model);
+    EXPECT_NE(listing.find("[0, phi]"), std::string::npos) << listing;
+    EXPECT_EQ(listing.find("[0, 19.8]"), std::string::npos) << listing;
+    EXPECT_EQ(listing.find("[0, 30]"), std::string::npos) << listing;
+  }
+  EXPECT_NE(models_listing("mohr-coulomb").find(">= 0 (> 0 when phi = 0)"), std::string::npos);
+  const std::string dp = models_listing("drucker-prager");
+  EXPECT_NE(dp.find("[0, c cot(phi)]"), std::string::npos) << dp;
+  EXPECT_NE(dp.find("c cot(phi), the apex"), std::string::npos) << dp;
+}
+
+TEST(KeysListing, SphsSoundSpeedIsUsedAsGiven) {
+  // sph/sph_solver.cpp takes sph.sound_speed as it is; no P-wave speed raises it
+  const std::string sph = keys_listing("sph");
+  EXPECT_EQ(sph.find("the larger of it and"), std::string::npos) << sph;
+  EXPECT_NE(sph.find("used as given"), std::string::npos) << sph;
 }
 
 TEST(MethodsListing, ListsEveryRegisteredMethodWithItsOptionTables) {

@@ -132,6 +132,73 @@ TEST(RunWarnings, AMovingBodyThatNeverCarriedAForceIsNamed) {
   EXPECT_TRUE(warnings(still, 0.0).empty());
 }
 
+TEST(LoadDrop, IsTheLargestFallBelowTheRunningMaximum) {
+  // issue 44's ispfem footing: the load climbs to 110 kPa and falls to 57 kPa
+  const LoadDrop d = largest_load_drop({0, 1, 2, 3, 4}, {0, 100, 110, 57, 60});
+  EXPECT_NEAR(d.fraction, 53.0 / 110.0, 1e-12);
+  EXPECT_EQ(d.peak, 110.0);
+  EXPECT_EQ(d.peak_time, 2.0);
+  EXPECT_EQ(d.low, 57.0);
+  EXPECT_EQ(d.low_time, 3.0);
+  EXPECT_EQ(largest_load_drop({0, 1, 2}, {0, 50, 100}).fraction, 0.0);  // rising: none
+}
+
+TEST(LoadDrop, FirstContactsSmallLoadsAreNotCounted) {
+  // 5 -> 1 is a fall of 80 %, below a tenth of the largest load (100): contact noise
+  EXPECT_EQ(largest_load_drop({0, 1, 2, 3, 4}, {0, 5, 1, 50, 100}).fraction, 0.0);
+  EXPECT_NEAR(largest_load_drop({0, 1, 2, 3}, {0, 20, 10, 100}).fraction, 0.5, 1e-12);
+}
+
+TEST(LoadDrop, RecordedAlongTheMotionWhileTheBodyIsDriven) {
+  // The footing pushed down at 0.05 m/s until t = 1 s, then held: the soil's upward force is its
+  // load while it moves; once held, nothing is recorded.
+  const Scene scene = load_scene_checked_from_string(
+      kFooting, "footing.toml",
+      {"rigid_body.footing.velocity=[[0.0, 0.0, -0.05], [1.0, 0.0, -0.05], [1.0, 0.0, 0.0]]"});
+  std::vector<BoundaryLoad> loads = driven_boundaries(scene);
+  ASSERT_EQ(loads.size(), 1u);
+  EXPECT_EQ(loads[0].name, "footing");
+  record_boundary_loads(scene, 0.5, {{"footing", Vec2(3.0, 200.0)}}, loads);
+  record_boundary_loads(scene, 1.5, {{"footing", Vec2(0.0, 100.0)}}, loads);
+  EXPECT_EQ(loads[0].time, std::vector<double>{0.5});
+  EXPECT_EQ(loads[0].load, std::vector<double>{200.0});
+}
+
+TEST(RunWarnings, ALoadDropWhereNothingCanSoftenIsWarned) {
+  const Scene scene = load_scene_checked_from_string(kFooting, "footing.toml", {});
+  KineticEnergyRecord energy;
+  const EnergyBudget budget(scene, Particles{}, 0.0);
+  const auto warnings = [&](const Scene& s, std::vector<double> load) {
+    const std::vector<BoundaryLoad> loads = {{"footing", {0.0, 0.25, 0.5, 0.75, 1.0}, load}};
+    return run_warnings(s, /*inertial=*/false, energy, budget, 1.0, Json::object(), 100,
+                        {{"footing", 110.0}}, loads);
+  };
+  const std::vector<std::string> w = warnings(scene, {0, 100, 110, 57, 60});
+  ASSERT_TRUE(says(w,
+                   "load-drop: the load on footing fell 48 % below its maximum, from 110 N/m "
+                   "at t = 0.5 s to 57 N/m at t = 0.75 s"))
+      << (w.empty() ? "" : w[0]);
+  EXPECT_TRUE(warnings(scene, {0, 100, 110, 105, 106}).empty());  // 4.5 %: within the noise
+  // An explicit run's reactions ring about their trend: its falls say nothing
+  const std::vector<BoundaryLoad> loads = {{"footing", {0.0, 0.25, 0.5}, {0, 110, 57}}};
+  EXPECT_TRUE(run_warnings(scene, /*inertial=*/true, energy, budget, 1.0, Json::object(), 100,
+                           {{"footing", 110.0}}, loads)
+                  .empty());
+}
+
+TEST(RunWarnings, NoLoadDropWhereAMaterialCanSoftenOrTheStrengthIsReduced) {
+  Scene scene;
+  scene.materials.resize(2);
+  scene.materials[0].model = "tresca";
+  scene.materials[1].model = "drucker-prager";
+  EXPECT_TRUE(cannot_soften(scene));
+  scene.strength_reduction.factor = 1.2;  // c and phi fall during an srf trial
+  EXPECT_FALSE(cannot_soften(scene));
+  scene.strength_reduction.factor = 1.0;
+  scene.materials[1].model = "hypoplastic";  // dense sand softens past its peak
+  EXPECT_FALSE(cannot_soften(scene));
+}
+
 TEST(RunWarnings, AFootingStartingAboveTheSoilIsWarnedOfByTheRun) {
   // footing.toml's footing lifted 0.3 m off the soil and pushed 0.1 m: ispfem completes with a
   // bearing of 0 and says why.

@@ -327,5 +327,62 @@ TEST(SceneLoader, BadSceneMessagesCarryTheLineOfTheOffendingKey) {
   EXPECT_EQ(message.rfind(file.string() + ":14: material.sand.nu = 0.62", 0), 0u) << message;
 }
 
+std::string bad_scene(const std::string& name) {
+  return (std::filesystem::path(DUET_SOURCE_DIR) / "tests/data/bad-scenes" / name).string();
+}
+
+/// The message of the InputError that loading the file throws ("" when it loads).
+std::string file_refusal(const std::string& path, const std::vector<std::string>& overrides,
+                         bool force = false) {
+  try {
+    load_scene_checked(path, overrides, force);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneValidation, AWallThroughABodyIsRefusedNamingBothAndWhereUnlessMeant) {
+  // issue 44: the soil runs 0.5 m past the far wall at x = 3 (dp 0.1): the wall's points from
+  // y = 0.5 to 1 m lie 0.5 m from the outline, the deepest of the wall inside the body
+  const std::string path = bad_scene("body-crossing-wall.toml");
+  const std::string message = file_refusal(path, {});
+  EXPECT_NE(message.find("body.sand: wall 'far' passes through the body: its point (3, "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("lies 0.5 m inside the body's outline"), std::string::npos) << message;
+  EXPECT_NE(message.find("crosses_walls = true"), std::string::npos) << message;
+  EXPECT_EQ(file_refusal(path, {"body.sand.crosses_walls=true"}), "");
+}
+
+TEST(SceneValidation, AWallWithinHalfASpacingOfTheBodysEdgeIsAccepted) {
+  // dp 0.1: the lattice's last column is centred at 2.95 m either way; 0.06 m past the wall is
+  // more than half a spacing, and refused
+  const std::string path = bad_scene("body-crossing-wall.toml");
+  EXPECT_EQ(file_refusal(path, {"body.sand.max=[3.04, 1.5]"}), "");
+  EXPECT_NE(file_refusal(path, {"body.sand.max=[3.06, 1.5]"}).find("wall 'far' passes through"),
+            std::string::npos);
+}
+
+TEST(SceneValidation, ABodyOnAWallsFarSideIsRefusedUnlessMeant) {
+  // within reach of the divider (2h = 0.141 m): 30 particles of the column on its left, 18 of
+  // the heap on its right; the methods put the divider's dummies and contact on the heap's side
+  const std::string path = bad_scene("body-beyond-wall.toml");
+  const std::string message = file_refusal(path, {});
+  EXPECT_NE(message.find("body.heap: lies beyond wall 'divider': 18 of its particles near the "
+                         "wall's segment (1, 0) - (1, 0.6) are on its far side, away from the "
+                         "soil it holds (body 'column', 30 particles)"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(file_refusal(path, {"body.heap.crosses_walls=true"}), "");
+}
+
+TEST(SceneValidation, AModulusOrStrengthInTheWrongUnitLoadsWithForce) {
+  EXPECT_EQ(file_refusal(bad_scene("modulus-in-megapascals.toml"), {}, /*force=*/true), "");
+  EXPECT_EQ(file_refusal(bad_scene("strength-in-kilopascals.toml"), {}, /*force=*/true), "");
+  // 10 kPa is the least modulus taken without it
+  EXPECT_EQ(file_refusal(bad_scene("modulus-in-megapascals.toml"), {"material.sand.E=1e4"}), "");
+}
+
 }  // namespace
 }  // namespace duet
