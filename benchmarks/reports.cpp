@@ -114,8 +114,18 @@ std::string compare_markdown(const std::vector<RunSummary>& runs, double target)
       if (it == r.accuracy.end()) {
         md << "  |  |";
       } else {
-        char error[32];
-        std::snprintf(error, sizeof error, "%.1f %%", 100.0 * it->second.rel_error);
+        // Signed where the run recorded the sign (over- and under-prediction told apart), and
+        // for a curve where along it the largest error is
+        const Accuracy& a = it->second;
+        char error[64];
+        if (std::isfinite(a.signed_error) && std::isfinite(a.worst_at)) {
+          std::snprintf(error, sizeof error, "%+.1f %% at %.3g", 100.0 * a.signed_error,
+                        a.worst_at);
+        } else if (std::isfinite(a.signed_error)) {
+          std::snprintf(error, sizeof error, "%+.1f %%", 100.0 * a.signed_error);
+        } else {
+          std::snprintf(error, sizeof error, "%.1f %%", 100.0 * a.rel_error);
+        }
         char value[64];
         std::snprintf(value, sizeof value, "%.4g (ref %.4g)", it->second.value,
                       it->second.reference);

@@ -51,6 +51,8 @@ RunSummary summary_from_metrics(const Json& metrics, const std::string& out_dir)
       entry.reference = number_or_nan(a.find("reference"));
       entry.rel_error = number_or_nan(a.find("rel_error"));
       entry.source = string_or_empty(a.find("source"));
+      entry.signed_error = number_or_nan(a.find("signed_error"));
+      entry.worst_at = number_or_nan(a.find("worst_at"));
       s.accuracy[name] = entry;
     }
   }

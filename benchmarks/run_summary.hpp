@@ -2,6 +2,7 @@
 // What one run produced, as the comparison and stability reports read it (the fields of
 // metrics.json that compare.csv flattens).
 
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -14,8 +15,12 @@ namespace duet {
 struct Accuracy {
   double value = 0.0;
   double reference = 0.0;
-  double rel_error = 0.0;  // |value - reference| / |reference|
+  double rel_error = 0.0;  // |value - reference| / |reference|; a curve's largest over its window
   std::string source;
+  // (value - reference) / |reference| where rel_error is: over (+) or under (-) the reference;
+  // NaN in a metrics.json written before it was recorded
+  double signed_error = std::numeric_limits<double>::quiet_NaN();
+  double worst_at = std::numeric_limits<double>::quiet_NaN();  // a curve's: where (its abscissa)
 };
 
 struct RunSummary {

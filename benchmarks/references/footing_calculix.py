@@ -60,6 +60,7 @@ ALL_RUNS = [
     ("footing-deep", "fine", True, "rough", "footing-deep/nlgeom-fine.csv"),
     ("footing-stiff", "fine", False, "rough", "footing-stiff/rough.csv"),
     ("footing-stiff", "fine", False, "smooth", "footing-stiff/smooth.csv"),
+    ("footing-stiff", "coarse", True, "rough", "footing-stiff/rough-nlgeom-coarse.csv"),
 ]
 
 

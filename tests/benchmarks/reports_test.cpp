@@ -66,6 +66,18 @@ TEST(CompareMarkdown, ListsEveryMeasureScoredOrNot) {
   EXPECT_NE(md.find("| 0.0973 |"), std::string::npos) << md;
 }
 
+TEST(CompareMarkdown, AnErrorIsSignedAndACurveSaysWhereItsLargestIs) {
+  RunSummary under = make_run("ispfem", 0.1, 0.149, 2.0);
+  under.accuracy["runout"].signed_error = -0.149;
+  RunSummary curve = make_run("sph", 0.1, 0.056, 2.0);
+  curve.accuracy["runout"].signed_error = 0.056;
+  curve.accuracy["runout"].worst_at = 0.0496;
+  const std::string md = compare_markdown({under, curve, make_run("espfem", 0.1, 0.02, 1.0)}, 0.0);
+  EXPECT_NE(md.find("| -14.9 % |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| +5.6 % at 0.0496 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 2.0 % |"), std::string::npos) << md;  // no sign recorded
+}
+
 TEST(CompareCsv, FailedRunsAppearWithTheirReason) {
   const auto dir = std::filesystem::temp_directory_path() / "duet_reports_test";
   std::filesystem::create_directories(dir);

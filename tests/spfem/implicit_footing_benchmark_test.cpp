@@ -1,7 +1,7 @@
 // The rigid strip footing on weightless Tresca soil (benchmarks/scenes/footing.toml, rough, to
 // w/B = 0.1) through the implicit SPFEM at a coarse spacing (dp 0.25 m: 400 nodes, B/2 = 4 dp):
-// the bearing pressure q / c_u at w/B = 0.1 within the scene's tolerance (10 %) of Prandtl's
-// (2 + pi). Measured at this spacing: 4.47 at w/B 0.05, 5.26 at 0.1 (spfem/README.md).
+// its load-settlement curve against the CalculiX curve of the scene, the limit load of the same
+// footing on stiffer soil (footing-limit.toml) against Prandtl's (2 + pi), and Newton's rate.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -46,19 +46,36 @@ IspfemRun run_ispfem(const Scene& scene, const std::string& tag) {
   return out;
 }
 
-TEST(ImplicitFootingBenchmark, BearingPressureWithinTenPercentOfPrandtlAtCoarseSpacing) {
-  // Arrange
+TEST(ImplicitFootingBenchmark, CurveWithinSevenPercentOfTheFiniteElementCurveAtCoarseSpacing) {
+  // Arrange: 4 nodes under the half footing
   const Scene scene = load_scene(std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing.toml",
                                  {"spacing=0.25"});
   // Act
   const RunSummary run = run_ispfem(scene, "footing").summary;
-  // Assert: Prandtl q_u / c_u = 2 + pi = 5.1416 (the scene's reference)
+  // Assert: q/c_u against w/B from 0.03 to 0.1 against CalculiX's large-deformation curve of the
+  // same footing (the scene's reference; measured -5.8 % at w/B 0.059 at this spacing, 5.31
+  // against 5.50 at w/B 0.1). A footing whose soil yields at the wrong stress, or a reaction
+  // summed over the wrong nodes, is off by tens of per cent.
   ASSERT_TRUE(run.completed()) << run.failure_reason << " at t = " << run.failure_time;
-  const Accuracy& bearing = run.accuracy.at("bearing");
-  std::printf("q / c_u at w/B = 0.1: %.4f (reference %.4f), %+.2f %%, %.1f s\n", bearing.value,
-              bearing.reference, 100.0 * (bearing.value - bearing.reference) / bearing.reference,
-              run.wall_seconds);
-  EXPECT_LT(bearing.rel_error, 0.1);
+  const Accuracy& curve = run.accuracy.at("bearing_curve");
+  std::printf("q / c_u at w/B = 0.1: %.4f (reference %.4f), worst over 0.03-0.1 %.2f %%, %.1f s\n",
+              curve.value, curve.reference, 100.0 * curve.rel_error, run.wall_seconds);
+  EXPECT_LT(curve.rel_error, 0.07);
+}
+
+TEST(ImplicitFootingBenchmark, LimitLoadOfTheStiffFootingWithinThreePercentOfPrandtl) {
+  // Arrange: footing-limit.toml (I_r 334) at dp 0.25, rough
+  const Scene scene = load_scene(
+      std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing-limit.toml", {"spacing=0.25"});
+  // Act
+  const RunSummary run = run_ispfem(scene, "footing-limit").summary;
+  // Assert: q/c_u from w/B 0.02 to 0.05 within the scene's 3 % of (2 + pi) (measured +2.8 % at
+  // w/B 0.05, the load rising with the embedment)
+  ASSERT_TRUE(run.completed()) << run.failure_reason << " at t = " << run.failure_time;
+  const Accuracy& curve = run.accuracy.at("bearing_curve");
+  std::printf("q / c_u at w/B = 0.05: %.4f, worst over 0.02-0.05 %.2f %%, %.1f s\n", curve.value,
+              100.0 * curve.rel_error, run.wall_seconds);
+  EXPECT_LT(curve.rel_error, 0.03);
 }
 
 TEST(ImplicitFootingBenchmark, NewtonConvergesQuadraticallyBeforeFullPlasticity) {
