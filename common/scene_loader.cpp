@@ -367,7 +367,11 @@ Reference read_reference(const std::string& measure, SectionReader& r,
     if (!r.has("points")) {
       std::filesystem::path file(ref.curve_file);
       if (file.is_relative()) file = std::filesystem::path(scene_file).parent_path() / file;
-      ref.curve = read_reference_csv(file.lexically_normal().string());
+      try {
+        ref.curve = read_reference_csv(file.lexically_normal().string());
+      } catch (const InputError& e) {
+        r.fail("curve", e.what(), "a CSV file of x, y beside the scene (a path relative to it)");
+      }
       toml::array resolved;
       for (const Vec2& p : ref.curve) resolved.push_back(toml::array{p.x(), p.y()});
       r.resolved().insert_or_assign("points", std::move(resolved));
