@@ -53,6 +53,11 @@ std::vector<std::string> methods_in_order(const std::vector<RunSummary>& runs) {
   return methods;
 }
 
+/// " (warned: N)" for a run that doubts its own result (metrics.json's warnings), else "".
+std::string warned(const RunSummary& run) {
+  return run.warnings.empty() ? "" : " (warned: " + std::to_string(run.warnings.size()) + ")";
+}
+
 /// The row of one method on one benchmark.
 std::string method_row(const std::string& scene, const std::string& method,
                        const std::vector<RunSummary>& runs, const TargetChoice& choice) {
@@ -77,13 +82,13 @@ std::string method_row(const std::string& scene, const std::string& method,
   row << "| " << scene << " | " << method << " | " << completed << " of " << tried << " | ";
   if (choice.run) {
     row << spacing_text(choice.run->spacing) << " | " << seconds(choice.run->wall_seconds) << " | "
-        << percent(choice.run->max_rel_error()) << " | ";
+        << percent(choice.run->max_rel_error()) << warned(*choice.run) << " | ";
   } else {
     row << "none | | | ";
   }
   if (best) {
     row << percent(best->max_rel_error()) << " (dp " << spacing_text(best->spacing) << ", "
-        << seconds(best->wall_seconds) << " s)";
+        << seconds(best->wall_seconds) << " s" << warned(*best) << ")";
   } else if (completed > 0 && !scored) {
     row << "no scored measure";
   } else if (first_failure) {
@@ -104,7 +109,8 @@ std::string summary_markdown(const std::vector<BenchmarkRuns>& benchmarks, doubl
   const std::string within = "within " + percent(target);
   md << "Target: every scored error below " << percent(target)
      << ". Per benchmark and method: the coarsest spacing that meets it and its wall time, the "
-        "smallest error any completed run reached, and the first failure.\n\n";
+        "smallest error any completed run reached, and the first failure; \"warned: N\" marks a "
+        "run whose metrics.json holds N warnings about its own result.\n\n";
   md << "| benchmark | method | runs completed | coarsest spacing " << within
      << " | wall (s) | error | best error reached |\n";
   md << "|---|---|---|---|---|---|---|\n";

@@ -56,6 +56,11 @@ RunSummary summary_from_metrics(const Json& metrics, const std::string& out_dir)
       s.accuracy[name] = entry;
     }
   }
+  if (const Json* warnings = metrics.find("warnings"); warnings && warnings->is_array()) {
+    for (const Json& w : warnings->elements()) {
+      if (w.is_string()) s.warnings.push_back(w.string());
+    }
+  }
   if (const Json* timing = metrics.find("timing"); timing && timing->is_object()) {
     for (const auto& [name, value] : timing->members()) {
       if (value.is_number()) s.timing[name] = value.number();

@@ -36,6 +36,7 @@ struct RunSummary {
   std::map<std::string, double> measures;
   std::map<std::string, Accuracy> accuracy;
   std::map<std::string, double> timing;
+  std::vector<std::string> warnings;  // metrics.json's: what the run doubts about itself
   std::string out_dir;
 
   bool completed() const { return status == "completed"; }

@@ -102,6 +102,21 @@ TEST(CompareMarkdown, ReportsTargetChoicePerMethod) {
   EXPECT_NE(md.find("- sph: spacing 0.0025 m"), std::string::npos);
 }
 
+TEST(AccuracySummary, MarksARunThatWarnedOfItsOwnResult) {
+  RunSummary doubted = make_run("ispfem", 0.25, 0.03, 3.0);
+  doubted.warnings = {"load-drop: the load fell 23 % in a model that cannot soften"};
+  BenchmarkRuns footing{"footing", "", {doubted, make_run("sph", 0.25, 0.04, 5.0)}};
+  const std::string md = summary_markdown({footing}, 0.05);
+  EXPECT_NE(
+      md.find("| footing | ispfem | 1 of 1 | 0.25 m | 3 | 3 % (warned: 1) | 3 % (dp 0.25 m, 3 "
+              "s (warned: 1)) |"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| footing | sph | 1 of 1 | 0.25 m | 5 | 4 % | 4 % (dp 0.25 m, 5 s) |"),
+            std::string::npos)
+      << md;
+}
+
 TEST(AccuracySummary, NamesPerBenchmarkTheCoarsestSpacingAndTheCheapestMethod) {
   // footing: espfem meets 5 % only at 0.1 m (20 s), ispfem already at 0.25 m (3 s); sph fails
   // everywhere. collapse: nobody meets 5 %.
