@@ -120,8 +120,8 @@ CurveScore score_curve(const std::vector<double>& x, const std::vector<double>& 
       score.worst_at = at;
     }
   };
-  if (!(score.reached >= window.y())) {
-    score.rel_error = kNaN;
+  if (!(score.reached >= window.y())) {  // not scored: nothing about it is a figure
+    score.rel_error = score.signed_error = score.worst_at = score.mean_error = kNaN;
     return score;
   }
   score_point(window.x(), series_value_at(x, y, window.x()));

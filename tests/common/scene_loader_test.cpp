@@ -15,31 +15,12 @@
 #include "benchmarks/scene_input.hpp"
 #include "common/input_error.hpp"
 #include "constitutive/registry.hpp"
+#include "tests/common/column_scene.hpp"
 
 namespace duet {
 namespace {
 
-const std::string kScene = R"(name = "column"
-spacing = 0.01
-gravity = [0.0, -9.81]
-
-[time]
-end_time = 0.5
-
-[material.sand]
-model = "linear-elastic"
-density = 1800.0
-E = 1.0e6
-nu = 0.3
-
-[body.column]
-material = "sand"
-min = [0.0, 0.0]
-max = [0.2, 0.1]
-
-[wall.floor]
-points = [[0.0, 0.0], [0.6, 0.0]]
-)";
+const std::string kScene = test::kColumnScene;
 
 /// The message of the InputError that loading throws ("" when it loads).
 std::string refusal(const std::string& text, const std::vector<std::string>& overrides = {}) {
