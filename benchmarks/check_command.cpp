@@ -37,6 +37,8 @@ std::string about(double value) {
 }
 
 std::string with_commas(double value) {
+  // Beyond a long long (a mistaken spacing or density): the order of magnitude is the message.
+  if (!(std::abs(value) < 1e15)) return about(value);
   std::string digits = std::to_string(static_cast<long long>(std::llround(value)));
   for (int at = static_cast<int>(digits.size()) - 3; at > 0; at -= 3) digits.insert(at, ",");
   return digits;
@@ -147,6 +149,8 @@ void print_method(const Scene& scene, const MethodInfo& method, double wave_spee
          << format_number(scene.spfem.time_step_safety) << " x dp / P-wave speed "
          << about(wave_speed) << " m/s), about " << with_commas(std::ceil(scene.time.end_time / dt))
          << " steps (slivers of the mesh shorten it)";
+  } else if (method.name == "espfem") {
+    line << "time step not estimated (too many particles to sample the wave speed here)";
   } else if (method.name == "ispfem") {
     const double increment = scene.spfem_implicit.increment > 0.0
                                  ? scene.spfem_implicit.increment

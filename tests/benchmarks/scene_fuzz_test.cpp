@@ -3,11 +3,14 @@
 // non-finite number, huge and tiny spacings, empty and binary files, unicode names, deep nesting,
 // degenerate polygons), each loaded as `duet run` and `duet check` load a scene (parse, read,
 // validate, build the models, estimate the run's size against the machine). Each must end in a
-// scene or an InputError (exit 2) that names a key, a line or the file, within a second; any
-// other exception, a crash (the sanitizer build runs this too) or a hang is a defect. The count
+// scene or an InputError (exit 2) that names a key, a line or the file, within a second or five
+// times the unmutated scene's own load, whichever is longer (the sanitizer build loads the cavity's
+// 31,000 polar-lattice particles in about a second); any other exception, a crash (the sanitizer
+// build runs this too) or a hang is a defect. The count
 // and the classes of message are printed (benchmarks/RESULTS.md records them).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -28,6 +31,27 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// Load a scene as `duet run` and `duet check` do: parse, validate, build, estimate its size.
+void load_as_a_run_does(const std::string& text, const fs::path& path) {
+  // The scene's own path: a reference curve beside it is read as a user's run reads it
+  const Scene scene = load_scene_checked_from_string(text, path.string());
+  for (const std::string& method : builtin_methods().names()) {
+    refuse_if_too_large(scene, builtin_methods().find(method), false);
+  }
+}
+
+/// Seconds the unmutated scene takes to load, the fastest of three (this build's own speed).
+double own_load_seconds(const std::string& text, const fs::path& path) {
+  double fastest = 1e300;
+  for (int k = 0; k < 3; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    load_as_a_run_does(text, path);
+    fastest = std::min(
+        fastest, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return fastest;
+}
+
 /// What kind of refusal a message is: its text up to the first ':' after the location.
 std::string message_class(const std::string& message) {
   std::string rest = message;
@@ -44,7 +68,7 @@ std::string message_class(const std::string& message) {
   return key.substr(0, std::min<std::size_t>(key.size(), 28));
 }
 
-TEST(SceneFuzz, EveryMutationLoadsOrIsRefusedNamingWhereWithinASecond) {
+TEST(SceneFuzz, EveryMutationLoadsOrIsRefusedNamingWhereInBoundedTime) {
   std::mt19937 random(20261202);
   long tried = 0, accepted = 0, refused = 0;
   std::map<std::string, long> classes;
@@ -54,15 +78,13 @@ TEST(SceneFuzz, EveryMutationLoadsOrIsRefusedNamingWhereWithinASecond) {
        fs::directory_iterator(fs::path(DUET_SOURCE_DIR) / "benchmarks/scenes")) {
     if (entry.path().extension() != ".toml") continue;
     const std::string name = entry.path().filename().string();
-    for (const auto& [label, text] : test::mutations(test::read_text(entry.path()), random)) {
+    const std::string original = test::read_text(entry.path());
+    const double limit = std::max(1.0, 5.0 * own_load_seconds(original, entry.path()));
+    for (const auto& [label, text] : test::mutations(original, random)) {
       ++tried;
       const auto start = std::chrono::steady_clock::now();
       try {
-        // The scene's own path: a reference curve beside it is read as a user's run reads it
-        const Scene scene = load_scene_checked_from_string(text, entry.path().string());
-        for (const std::string& method : builtin_methods().names()) {
-          refuse_if_too_large(scene, builtin_methods().find(method), false);
-        }
+        load_as_a_run_does(text, entry.path());
         ++accepted;
       } catch (const InputError& e) {
         ++refused;
@@ -81,7 +103,7 @@ TEST(SceneFuzz, EveryMutationLoadsOrIsRefusedNamingWhereWithinASecond) {
         slowest = seconds;
         slowest_label = name + ", " + label;
       }
-      EXPECT_LT(seconds, 1.0) << name << ", " << label;
+      EXPECT_LT(seconds, limit) << name << ", " << label;
     }
   }
   std::cout << tried << " mutations: " << accepted << " loaded, " << refused << " refused; slowest "
