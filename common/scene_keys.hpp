@@ -2,7 +2,8 @@
 // The scene schema as data: every key of every table of a scene file with its type, unit,
 // default and meaning. The loader (scene_loader.cpp) takes the keys each table accepts from this
 // list, so `duet keys` cannot list a key the loader refuses, nor miss one it accepts; a test
-// (tests/common/scene_keys_test.cpp) checks every literal default against what the loader fills in.
+// (tests/benchmarks/listing_commands_test.cpp) checks every literal default against what the loader
+// fills in.
 
 #include <string>
 #include <string_view>

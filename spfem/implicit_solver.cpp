@@ -1,6 +1,5 @@
 #include "spfem/implicit_solver.hpp"
 
-#include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -13,17 +12,11 @@
 #include "common/input_error.hpp"
 #include "common/solver.hpp"
 #include "spfem/increment_operator.hpp"
+#include "spfem/newton_increment.hpp"
 
 namespace duet::spfem {
 
 namespace {
-
-// Newton step halvings a line search may take before it accepts the step anyway
-constexpr int kLineSearchHalvings = 4;
-
-// How far an iterate's reaction may grow past the attempt's first before it stops scaling the
-// residual (ImplicitSolver::solve_increment)
-constexpr double kReactionGrowth = 10.0;
 
 std::string format_residuals(const std::vector<double>& r) {
   std::ostringstream out;
@@ -214,8 +207,63 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
   const SmoothingCells& cells = discretisation_.cells();
   std::vector<std::uint8_t> held(n, 0);  // in no triangle: no stiffness, no unknowns (DofMap)
   for (std::size_t i = 0; i < n; ++i) held[i] = cells.area[i] > 0.0 ? 0 : 1;
+  std::vector<NodeConstraint> constraints = start_contacts(particles, t0, t1);
+  const double external_norm = update_external_force(particles, t1);
 
-  // Contacts at the start; a released node is let go until it no longer touches any boundary
+  const Models* models_now = models_at_ ? models_at_(t1) : nullptr;
+  IncrementOperator op(discretisation_, models_now ? *models_now : setup_.models, particles,
+                       wall_strip_increments(t0, t1), &timers_, o.increment_stabilisation);
+  const NewmarkIncrement integrator(o.newmark && !settling_, t0, t1, particles, acceleration_);
+  if (integrator.inertia && !dynamic_started_) {
+    // the first step from rest under the loads alone (a body released from a settled state
+    // has a = 0: settle() marks it started)
+    for (std::size_t i = 0; i < n; ++i) {
+      acceleration_[i] = particles.mass[i] > 0.0 ? Vec2(external_force_[i] / particles.mass[i])
+                                                 : Vec2(Vec2::Zero());
+    }
+    dynamic_started_ = true;
+  }
+  const std::vector<double> mass_diagonal = integrator.mass_diagonal();
+
+  for (int pass = 0; pass < o.active_set_passes; ++pass) {
+    const DofMap dofs = eliminate(n, constraints, held);
+    refuse_if_unheld(dofs, held, integrator.inertia, t0);
+    std::vector<Vec2> u = initial_guess(dofs, integrator, t1 - t0);
+    IncrementResidual residual(op, dofs, external_force_, external_norm, held, integrator);
+    NewtonOutcome newton =
+        newton_solve(op, dofs, residual, mass_diagonal, o, particles.position, timers_, u);
+    counters_.iterations += newton.iterations;
+    counters_.factorisations += newton.factorisations;
+    counters_.line_search_halvings += newton.line_search_halvings;
+    attempt.converged = newton.converged;
+    attempt.why = std::move(newton.why);
+    attempt.residuals = std::move(newton.residuals);
+    if (!attempt.converged) return attempt;
+    attempt.displacement = u;
+
+    // Active set: release tensile contacts, attach nodes that crossed a boundary.
+    std::vector<NodeConstraint> kept = release_pulling_contacts(particles, op, constraints);
+    const bool released = kept.size() != constraints.size();
+    const bool attached = attach_crossing_nodes(particles, u, held, t0, t1, kept);
+    if (!(released || attached)) break;
+    if (pass + 1 == o.active_set_passes) break;  // keep the last solution
+    ++counters_.active_set_passes;
+    constraints = std::move(kept);
+  }
+
+  if (std::string why = refusal(particles, attempt.displacement, t0, t1); !why.empty()) {
+    attempt.converged = false;
+    attempt.why = std::move(why);
+    return attempt;
+  }
+  commit(particles, op, integrator, attempt.displacement, constraints);
+  return attempt;
+}
+
+std::vector<NodeConstraint> ImplicitSolver::start_contacts(const Particles& particles, double t0,
+                                                           double t1) {
+  // A released node is let go until it no longer touches any boundary
+  const std::size_t n = particles.size();
   std::vector<std::uint8_t> released_before = released_;
   std::fill(released_.begin(), released_.end(), 0);
   std::vector<NodeConstraint> all = find_constraints(particles.position, t0, t1, false);
@@ -227,30 +275,34 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     const NodeBoundary& b = discretisation_.boundaries()[std::size_t(c.boundary)];
     const bool bonded = b.condition == NodeCondition::bonded;
     // A rigid body keeps the nodes it held at the last increment's end (or at the start of the
-    // run) while they stay within reach; it takes new ones only when they cross it (the active
-    // set below). By proximity alone, the column of nodes dp/2 beside a footing's side was
-    // seized as soon as the footing's base passed them and dragged down with it (at w/B 0.09,
-    // dp 0.25, the bearing jumped from 5.14 to 5.58).
+    // run) while they stay within reach; it takes new ones only when they cross it
+    // (attach_crossing_nodes): by proximity alone, the column of nodes dp/2 beside a footing's
+    // side is seized as soon as the footing's base passes them and dragged down with it.
     if (b.rigid_body && held_initialised_ &&
         !(held_by_[std::size_t(c.node)] & (std::uint64_t{1} << (c.boundary % 64)))) {
       continue;
     }
     if (bonded || released_[std::size_t(c.node)] == 0) constraints.push_back(c);
   }
+  return constraints;
+}
 
+double ImplicitSolver::update_external_force(const Particles& particles, double t1) {
   // F_ext at the end of the increment: the scene's loads and gravity
   if (loads_) {
     loads_(t1, external_force_);
   } else {
     std::fill(external_force_.begin(), external_force_.end(), Vec2::Zero());
   }
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < particles.size(); ++i) {
     external_force_[i] += gravity_factor_ * particles.mass[i] * setup_.gravity;
   }
   double external_norm = 0.0;
   for (const Vec2& f : external_force_) external_norm += f.squaredNorm();
-  external_norm = std::sqrt(external_norm);
+  return std::sqrt(external_norm);
+}
 
+std::vector<Vec2> ImplicitSolver::wall_strip_increments(double t0, double t1) const {
   // The wall strips' wall points move with their walls over the increment
   const WallStrips& strips = discretisation_.wall_strips();
   std::vector<Vec2> wall_increment(2 * strips.edges.size(), Vec2::Zero());
@@ -261,277 +313,141 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     wall_increment[2 * e] = boundary_displacement(b, t0, t1, edge.a_wall);
     wall_increment[2 * e + 1] = boundary_displacement(b, t0, t1, edge.b_wall);
   }
-  const Models* models_now = models_at_ ? models_at_(t1) : nullptr;
-  IncrementOperator op(discretisation_, models_now ? *models_now : setup_.models, particles,
-                       wall_increment, &timers_, o.increment_stabilisation);
-  const double scale_dt = previous_increment_ > 0.0 ? (t1 - t0) / previous_increment_ : 0.0;
-  // Newmark's average acceleration (beta 1/4, gamma 1/2): a_n+1 = c (u - dt v_n) - a_n with
-  // c = 1 / (beta dt^2); the inertia M a_n+1 joins F_int and c M the tangent's diagonal
-  const bool inertia = o.newmark && !settling_;
-  const double c_mass = inertia ? 4.0 / ((t1 - t0) * (t1 - t0)) : 0.0;
-  if (inertia && !dynamic_started_) {
-    // the first step from rest under the loads alone (a body released from a settled state
-    // has a = 0: settle() marks it started)
-    for (std::size_t i = 0; i < n; ++i) {
-      acceleration_[i] = particles.mass[i] > 0.0 ? Vec2(external_force_[i] / particles.mass[i])
-                                                 : Vec2(Vec2::Zero());
-    }
-    dynamic_started_ = true;
-  }
-  const auto inertia_force = [&](std::size_t i, const Vec2& ui) -> Vec2 {
-    if (!inertia) return Vec2::Zero();
-    const double dt = t1 - t0;
-    return particles.mass[i] *
-           (c_mass * (ui - dt * particles.velocity[i]) - acceleration_[i]).eval();
-  };
-  std::vector<double> mass_diagonal;
-  if (inertia) {
-    mass_diagonal.resize(n);
-    for (std::size_t i = 0; i < n; ++i) mass_diagonal[i] = c_mass * particles.mass[i];
-  }
+  return wall_increment;
+}
 
-  for (int pass = 0; pass < o.active_set_passes; ++pass) {
-    const DofMap dofs = eliminate(n, constraints, held);
-    long n_constrained = 0;
-    for (std::size_t i = 0; i < n; ++i) n_constrained += dofs.constrained[i] && !held[i];
-    counters_.constrained_nodes_max = std::max(counters_.constrained_nodes_max, n_constrained);
-    if (n_constrained == 0 && !inertia) {
-      std::ostringstream why;
-      why << "ispfem: no wall or rigid body holds any node at t = " << t0
-          << " s: the quasi-static tangent is singular (the body can move as a rigid body)";
-      throw NumericalFailure(why.str());
-    }
-    // Start: the prescribed motion on the constrained parts and, on the free dofs, rest
-    // (spfem.implicit.predictor = none) or the last increment's motion scaled to this one
-    // (extrapolated). Neither wins everywhere (smooth paths like the extrapolation, plastic flow
-    // does not), nor does the smaller starting residual tell which is nearer (RESULTS.md).
-    std::vector<Vec2> u(dofs.prescribed);
-    // With inertia the guess is the motion at constant acceleration, dt v_n + dt^2 / 2 a_n.
-    const double dt = t1 - t0;
-    for (std::size_t i = 0; i < n && (inertia || o.extrapolate); ++i) {
-      const Vec2 guess = inertia
-                             ? Vec2(dt * particles.velocity[i] + 0.5 * dt * dt * acceleration_[i])
-                             : Vec2(scale_dt * previous_u_[i]);
-      for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
-        const Vec2& d = dofs.direction[std::size_t(a)];
-        u[i] += guess.dot(d) * d;
-      }
-    }
-    Eigen::UmfPackLU<SparseMatrix> lu;
-    // No iterative refinement: on the footing's tangent it cost six times the solve and gave the
-    // same residual (1e-13)
-    lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
-    Eigen::VectorXd residual(static_cast<Eigen::Index>(dofs.n_free()));
-    // R = F_ext - F_int on the free dofs, relative to the external load or, when the reaction
-    // is larger (a prescribed motion and no load: the footing, the cavity), to the reaction.
-    // The reaction (and the inertia force) counts at most kReactionGrowth times the largest of the
-    // load, the reaction and the inertia force at the attempt's first evaluation (the prescribed
-    // motion on a body at rest, or the guess):
-    // an iterate that flings a node far off has an enormous reaction, against which any residual
-    // looks small (the smooth footing "converged" with a cell area of -3e8 m^2 and reactions of
-    // 1e20 N, and the active set let go of three of its nodes on them).
-    double reaction_cap = -1.0;
-    const auto relative_residual = [&]() {
-      const std::vector<Vec2>& f_int = op.internal_force();
-      double reaction = 0.0;
-      double inertia_norm = 0.0;
-      for (std::size_t i = 0; i < n; ++i) {
-        const Vec2 m_a = inertia_force(i, u[i]);
-        inertia_norm += m_a.squaredNorm();
-        Vec2 r = external_force_[i] - f_int[i] - m_a;
-        for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
-          const Vec2& d = dofs.direction[std::size_t(a)];
-          residual(a) = r.dot(d);
-          r -= residual(a) * d;
-        }
-        if (!held[i]) reaction += r.squaredNorm();
-      }
-      if (reaction_cap < 0.0) {
-        reaction_cap = kReactionGrowth *
-                       std::max({external_norm, std::sqrt(reaction), std::sqrt(inertia_norm)});
-      }
-      // (the inertia force of a flung node is as enormous: capped alike)
-      const double scale = std::max({external_norm, std::min(std::sqrt(reaction), reaction_cap),
-                                     std::min(std::sqrt(inertia_norm), reaction_cap)});
-      const double norm = residual.norm();
-      return scale > 0.0 ? norm / scale : norm;
-    };
-    attempt.residuals.clear();
-    attempt.converged = false;
-    if (!op.evaluate(u)) {
-      attempt.why = "the stress update gave a non-finite stress";
-      return attempt;
-    }
-    double relative = relative_residual();
-    double correction = std::numeric_limits<double>::infinity();
-    for (int iteration = 0;; ++iteration) {
-      attempt.residuals.push_back(relative);
-      if (!std::isfinite(relative)) {
-        attempt.why = "non-finite residual";
-        return attempt;
-      }
-      if (relative <= o.tolerance ||
-          (correction <= o.displacement_tolerance && relative <= 100.0 * o.tolerance)) {
-        attempt.converged = true;
-        break;
-      }
-      if (iteration >= o.max_iterations) {
-        // where: the node of the largest residual component, for the user to look at
-        Eigen::Index worst = 0;
-        residual.cwiseAbs().maxCoeff(&worst);
-        const auto node = std::size_t(dofs.node[std::size_t(worst)]);
-        std::ostringstream why;
-        why << "no convergence in " << o.max_iterations << " iterations (largest residual at node "
-            << node << ", x = " << particles.position[node].x()
-            << " m, y = " << particles.position[node].y() << " m)";
-        attempt.why = why.str();
-        return attempt;
-      }
-      op.assemble_tangent(dofs, mass_diagonal);
-      Eigen::VectorXd du;
-      {
-        ScopedTimer t(timers_, Phase::solve);
-        if (iteration == 0) lu.analyzePattern(op.tangent());
-        lu.factorize(op.tangent());
-        ++counters_.factorisations;
-        if (lu.info() != Eigen::Success) {
-          attempt.why = "singular tangent (UMFPACK could not factorise it)";
-          return attempt;
-        }
-        du = lu.solve(residual);
-        ++counters_.iterations;
-      }
-      // Backtracking line search on the residual norm: the full step unless it raises the
-      // residual (Tresca's corners make a full Newton step cycle at full plastic flow)
-      const std::vector<Vec2> u_start = u;
-      double step = 1.0;
-      for (int search = 0;; ++search) {
-        for (std::size_t i = 0; i < n; ++i) {
-          u[i] = u_start[i];
-          for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
-            u[i] += step * du(a) * dofs.direction[std::size_t(a)];
-          }
-        }
-        const bool finite = op.evaluate(u);
-        const double trial = finite ? relative_residual() : std::numeric_limits<double>::infinity();
-        if ((trial < relative || search >= kLineSearchHalvings) && (finite || search > 0)) {
-          if (!finite) {
-            attempt.why = "the stress update gave a non-finite stress";
-            return attempt;
-          }
-          relative = trial;
-          break;
-        }
-        step *= 0.5;
-        ++counters_.line_search_halvings;
-      }
-      double u_norm = 0.0;
-      for (const Vec2& x : u) u_norm += x.squaredNorm();
-      correction = step * du.norm() / std::max(std::sqrt(u_norm), 1e-300);
-    }
-    attempt.displacement = u;
-
-    // Active set: release tensile contacts, attach nodes that crossed a boundary.
-    bool changed = false;
-    const std::vector<Vec2>& f_int = op.internal_force();
-    std::vector<NodeConstraint> kept;
-    // A rigid body's contact pressure oscillates from node to node with nodal integration's
-    // stresses (one node let go in the middle of footing-deep's footing moved its bearing by
-    // 14 %, RESULTS.md): the release test reads the normal reaction summed over the node and
-    // the nodes the same boundary holds within 1.5 dp of it.
-    std::vector<double> pull(constraints.size(), 0.0);
-    for (std::size_t a = 0; a < constraints.size(); ++a) {
-      const auto i = std::size_t(constraints[a].node);
-      pull[a] = (external_force_[i] - f_int[i]).dot(constraints[a].normal);
-    }
-    const double near = 1.5 * setup_.spacing;
-    for (std::size_t a = 0; a < constraints.size(); ++a) {
-      const NodeConstraint& c = constraints[a];
-      const NodeBoundary& b = discretisation_.boundaries()[std::size_t(c.boundary)];
-      if (!b.rigid_body || b.condition == NodeCondition::bonded || settling_ || !(pull[a] > 0.0)) {
-        continue;
-      }
-      const auto i = std::size_t(c.node);
-      double sum = 0.0;
-      for (std::size_t o = 0; o < constraints.size(); ++o) {
-        const auto j = std::size_t(constraints[o].node);
-        if (constraints[o].boundary == c.boundary &&
-            (particles.position[j] - particles.position[i]).norm() <= near) {
-          sum += pull[o];
-        }
-      }
-      const Vec2 r = external_force_[i] - f_int[i];
-      const double size = std::max(1e-9 * r.norm(), 1e-12);
-      // Walls hold the nodes they touch both ways (a free-slip wall is mostly a symmetry plane,
-      // which carries the cavity's tensile hoop stress); a rigid body lets go of a node whose
-      // neighbourhood pulls.
-      if (sum > size) {
-        if (released_[i] == 0) ++counters_.releases;
-        released_[i] = 1;
-        changed = true;
-      }
-    }
-    for (const NodeConstraint& c : constraints) {
-      if (released_[std::size_t(c.node)] == 0 ||
-          discretisation_.boundaries()[std::size_t(c.boundary)].condition ==
-              NodeCondition::bonded) {
-        kept.push_back(c);
-      }
-    }
-    {
-      std::vector<Vec2> x_end(n);
-      for (std::size_t i = 0; i < n; ++i) x_end[i] = particles.position[i] + u[i];
-      discretisation_.place_boundaries(t1, settling_);
-      std::vector<std::uint8_t> constrained(n, 0);
-      for (const NodeConstraint& c : kept) constrained[std::size_t(c.node)] = 1;
-      for (const NodeConstraint& c : find_constraints(x_end, t0, t1, true)) {
-        if (constrained[std::size_t(c.node)] || held[std::size_t(c.node)]) continue;
-        kept.push_back(c);
-        ++counters_.attachments;
-        changed = true;
-      }
-      discretisation_.place_boundaries(t0, settling_);
-    }
-    if (!changed) break;
-    if (pass + 1 == o.active_set_passes) break;  // keep the last solution
-    ++counters_.active_set_passes;
-    constraints = std::move(kept);
+void ImplicitSolver::refuse_if_unheld(const DofMap& dofs, const std::vector<std::uint8_t>& held,
+                                      bool inertia, double t0) {
+  long n_constrained = 0;
+  for (std::size_t i = 0; i < held.size(); ++i) n_constrained += dofs.constrained[i] && !held[i];
+  counters_.constrained_nodes_max = std::max(counters_.constrained_nodes_max, n_constrained);
+  if (n_constrained == 0 && !inertia) {
+    std::ostringstream why;
+    why << "ispfem: no wall or rigid body holds any node at t = " << t0
+        << " s: the quasi-static tangent is singular (the body can move as a rigid body)";
+    throw NumericalFailure(why.str());
   }
+}
 
+std::vector<Vec2> ImplicitSolver::initial_guess(const DofMap& dofs,
+                                                const NewmarkIncrement& integrator,
+                                                double dt) const {
+  // The prescribed motion on the constrained parts and, on the free dofs, rest
+  // (spfem.implicit.predictor = none) or the last increment's motion scaled to this one
+  // (extrapolated). Neither wins everywhere: smooth paths like the extrapolation, plastic flow
+  // does not, nor does the smaller starting residual tell which is nearer. With inertia the
+  // guess is the motion at constant acceleration.
+  const double scale_dt = previous_increment_ > 0.0 ? dt / previous_increment_ : 0.0;
+  std::vector<Vec2> u(dofs.prescribed);
+  for (std::size_t i = 0; i < u.size() && (integrator.inertia || setup_.implicit.extrapolate);
+       ++i) {
+    const Vec2 guess = integrator.inertia ? integrator.constant_acceleration_guess(i)
+                                          : Vec2(scale_dt * previous_u_[i]);
+    for (std::int32_t a = dofs.first[i]; a < dofs.first[i + 1]; ++a) {
+      const Vec2& d = dofs.direction[std::size_t(a)];
+      u[i] += guess.dot(d) * d;
+    }
+  }
+  return u;
+}
+
+std::vector<NodeConstraint> ImplicitSolver::release_pulling_contacts(
+    const Particles& particles, const IncrementOperator& op,
+    const std::vector<NodeConstraint>& constraints) {
+  // A rigid body's contact pressure oscillates from node to node with nodal integration's
+  // stresses: the release test reads the normal reaction summed over the node and the nodes the
+  // same boundary holds within 1.5 dp of it (ImplicitFootingBenchmark tests on footing-deep).
+  const std::vector<Vec2>& f_int = op.internal_force();
+  std::vector<double> pull(constraints.size(), 0.0);
+  for (std::size_t a = 0; a < constraints.size(); ++a) {
+    const auto i = std::size_t(constraints[a].node);
+    pull[a] = (external_force_[i] - f_int[i]).dot(constraints[a].normal);
+  }
+  const double near = 1.5 * setup_.spacing;
+  for (std::size_t a = 0; a < constraints.size(); ++a) {
+    const NodeConstraint& c = constraints[a];
+    const NodeBoundary& b = discretisation_.boundaries()[std::size_t(c.boundary)];
+    if (!b.rigid_body || b.condition == NodeCondition::bonded || settling_ || !(pull[a] > 0.0)) {
+      continue;
+    }
+    const auto i = std::size_t(c.node);
+    double sum = 0.0;
+    for (std::size_t o = 0; o < constraints.size(); ++o) {
+      const auto j = std::size_t(constraints[o].node);
+      if (constraints[o].boundary == c.boundary &&
+          (particles.position[j] - particles.position[i]).norm() <= near) {
+        sum += pull[o];
+      }
+    }
+    const Vec2 r = external_force_[i] - f_int[i];
+    const double size = std::max(1e-9 * r.norm(), 1e-12);
+    // Walls hold the nodes they touch both ways (a free-slip wall is mostly a symmetry plane,
+    // which carries the cavity's tensile hoop stress); a rigid body lets go of a node whose
+    // neighbourhood pulls.
+    if (sum > size) {
+      if (released_[i] == 0) ++counters_.releases;
+      released_[i] = 1;
+    }
+  }
+  std::vector<NodeConstraint> kept;
+  for (const NodeConstraint& c : constraints) {
+    if (released_[std::size_t(c.node)] == 0 ||
+        discretisation_.boundaries()[std::size_t(c.boundary)].condition == NodeCondition::bonded) {
+      kept.push_back(c);
+    }
+  }
+  return kept;
+}
+
+bool ImplicitSolver::attach_crossing_nodes(const Particles& particles, const std::vector<Vec2>& u,
+                                           const std::vector<std::uint8_t>& held, double t0,
+                                           double t1, std::vector<NodeConstraint>& kept) {
+  const std::size_t n = particles.size();
+  std::vector<Vec2> x_end(n);
+  for (std::size_t i = 0; i < n; ++i) x_end[i] = particles.position[i] + u[i];
+  discretisation_.place_boundaries(t1, settling_);
+  std::vector<std::uint8_t> constrained(n, 0);
+  for (const NodeConstraint& c : kept) constrained[std::size_t(c.node)] = 1;
+  bool attached = false;
+  for (const NodeConstraint& c : find_constraints(x_end, t0, t1, true)) {
+    if (constrained[std::size_t(c.node)] || held[std::size_t(c.node)]) continue;
+    kept.push_back(c);
+    ++counters_.attachments;
+    attached = true;
+  }
+  discretisation_.place_boundaries(t0, settling_);
+  return attached;
+}
+
+std::string ImplicitSolver::refusal(const Particles& particles, const std::vector<Vec2>& u,
+                                    double t0, double t1) {
+  const duet::SpfemImplicitOptions& o = setup_.implicit;
   // A converged increment that carries a node through a wall is not accepted: the step cuts it.
-  // Nodal integration's soft modes let Newton converge to such a state (the cavity at dp 0.25:
-  // a node by the wall moved 0.38 m inwards, through it, in one increment, and the run failed).
-  if (const std::string crossing = wall_crossing(particles.position, attempt.displacement, t0, t1);
-      !crossing.empty()) {
-    attempt.converged = false;
-    attempt.why = crossing;
-    return attempt;
+  // Nodal integration's soft modes let Newton converge to such a state.
+  if (std::string crossing = wall_crossing(particles.position, u, t0, t1); !crossing.empty()) {
+    return crossing;
   }
-
   // One that turns a triangle of its mesh inside out or squeezes it below min_area_ratio of its
-  // area is a snap-through of nodal integration's soft modes, not the soil's response: a
-  // quasi-static increment is small against dp (footing-deep at dp 0.125: nodes by the footing's
-  // corner jumped 0.2 m in an increment that moved the footing 0.2 mm, inverting triangles, and
-  // the bearing fell from 6.9 to 1.8 c_u). Cuts avoid some and not others (the discrete path
-  // branches there), so by default it is counted and warned of; snap = "refuse" cuts it and
-  // fails when the cuts run out.
+  // area is a snap-through of nodal integration's soft modes, not the soil's response (a
+  // quasi-static increment is small against dp). Cuts avoid some and not others (the discrete
+  // path branches there), so by default it is counted and warned of; snap = "refuse" cuts it
+  // and fails when the cuts run out.
   const SqueezedTriangle squeezed =
-      settling_ ? SqueezedTriangle{}
-                : most_squeezed_triangle(particles.position, attempt.displacement);
+      settling_ ? SqueezedTriangle{} : most_squeezed_triangle(particles.position, u);
   const bool snapped = squeezed.ratio < o.min_area_ratio || squeezed.ratio <= 0.0;
-  if (snapped && o.refuse_snaps) {
-    attempt.converged = false;
-    attempt.why = squeezed.describe(o.min_area_ratio);
-    return attempt;
-  }
+  if (snapped && o.refuse_snaps) return squeezed.describe(o.min_area_ratio);
   if (snapped) {
     if (counters_.snaps++ == 0) counters_.snap_first_time = t1;
     counters_.snap_worst_ratio = std::min(counters_.snap_worst_ratio, squeezed.ratio);
   }
+  return "";
+}
 
-  // Commit: the converged state of the increment
-  const double dt = t1 - t0;
-  const std::vector<Vec2>& u = attempt.displacement;
+void ImplicitSolver::commit(Particles& particles, const IncrementOperator& op,
+                            const NewmarkIncrement& integrator, const std::vector<Vec2>& u,
+                            const std::vector<NodeConstraint>& constraints) {
+  const std::size_t n = particles.size();
+  const double dt = integrator.dt;
   std::fill(boundary_force_.begin(), boundary_force_.end(), Vec2::Zero());
   {
     // Reactions: the residual at the constrained parts, to the boundary that holds each node
@@ -544,7 +460,7 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     for (std::size_t i = 0; i < n; ++i) {
       if (owner[i] >= 0) {
         boundary_force_[std::size_t(owner[i])] +=
-            external_force_[i] - f_int[i] - inertia_force(i, u[i]);
+            external_force_[i] - f_int[i] - integrator.inertia_force(i, u[i]);
       }
     }
     add_wall_strip_reactions(discretisation_.wall_strips(), discretisation_.cells(), op.stress(),
@@ -554,8 +470,8 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
   for (std::size_t i = 0; i < n; ++i) {
     particles.position[i] += u[i];
     particles.displacement[i] += u[i];
-    if (inertia) {
-      const Vec2 a = c_mass * (u[i] - dt * particles.velocity[i]) - acceleration_[i];
+    if (integrator.inertia) {
+      const Vec2 a = integrator.acceleration_at_end(i, u[i]);
       particles.velocity[i] += 0.5 * dt * (acceleration_[i] + a);
       acceleration_[i] = a;
     } else {
@@ -580,7 +496,6 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
   }
   held_initialised_ = true;
   previous_increment_ = dt;
-  return attempt;
 }
 
 double ImplicitSolver::step(Particles& particles, double time, double end_time) {

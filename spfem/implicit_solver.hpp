@@ -10,7 +10,9 @@
 // reaction turns tensile is released, a node that crosses a boundary is attached, and the
 // increment is solved again (the active set, a few passes). Newton failures halve the increment
 // (up to max_step_cuts in a row); then the run fails as data. This class knows nothing of the
-// scene file: spfem/method.cpp translates a Scene into an IspfemSetup.
+// scene file: spfem/method.cpp translates a Scene into an IspfemSetup. Its layers: the increment
+// controller (step, settle), the increment (solve_increment: contacts, Newton, active set,
+// acceptance, commit), Newton itself (newton_increment.hpp) and the integrator (newmark.hpp).
 
 #include <functional>
 #include <memory>
@@ -23,11 +25,14 @@
 #include "common/tensor.hpp"
 #include "common/timers.hpp"
 #include "constitutive/model.hpp"
+#include "spfem/newmark.hpp"
 #include "spfem/nodal_discretisation.hpp"
 #include "spfem/node_constraints.hpp"
 #include "spfem/node_contact.hpp"
 
 namespace duet::spfem {
+
+class IncrementOperator;
 
 struct IspfemSetup {
   duet::SpfemOptions options;           // [spfem]: the shared discretisation's options
@@ -106,7 +111,36 @@ class ImplicitSolver {
     std::vector<double> residuals;   // relative residual after each iteration
     std::vector<Vec2> displacement;  // u over the increment
   };
+  /// One increment [t0, t1]: mesh, contacts, Newton, the active set's passes, the acceptance
+  /// checks, and the commit of a converged and accepted one.
   Attempt solve_increment(Particles& particles, double t0, double t1);
+  /// The contacts at the increment's start (and the nodes still let go of).
+  std::vector<NodeConstraint> start_contacts(const Particles& particles, double t0, double t1);
+  /// F_ext at t1 into external_force_; returns its norm.
+  double update_external_force(const Particles& particles, double t1);
+  /// The wall strips' wall points' motion over the increment (two per edge).
+  std::vector<Vec2> wall_strip_increments(double t0, double t1) const;
+  /// Throws NumericalFailure when nothing holds the body and no inertia does either.
+  void refuse_if_unheld(const DofMap& dofs, const std::vector<std::uint8_t>& held, bool inertia,
+                        double t0);
+  /// Newton's start: the prescribed motion, and a guess on the free dofs.
+  std::vector<Vec2> initial_guess(const DofMap& dofs, const NewmarkIncrement& integrator,
+                                  double dt) const;
+  /// The active set's release: the constraints kept after letting go of a rigid body's nodes
+  /// whose neighbourhood pulls (fewer than given: some were let go).
+  std::vector<NodeConstraint> release_pulling_contacts(
+      const Particles& particles, const IncrementOperator& op,
+      const std::vector<NodeConstraint>& constraints);
+  /// The active set's attachment: nodes whose path crosses a boundary join `kept`; true if any.
+  bool attach_crossing_nodes(const Particles& particles, const std::vector<Vec2>& u,
+                             const std::vector<std::uint8_t>& held, double t0, double t1,
+                             std::vector<NodeConstraint>& kept);
+  /// Why a converged increment is not accepted (a node through a wall, a refused snap), or "";
+  /// counts the snaps it lets through.
+  std::string refusal(const Particles& particles, const std::vector<Vec2>& u, double t0, double t1);
+  /// The converged state into the particles; reactions, contacts held and Newmark's vectors.
+  void commit(Particles& particles, const IncrementOperator& op, const NewmarkIncrement& integrator,
+              const std::vector<Vec2>& u, const std::vector<NodeConstraint>& constraints);
   std::vector<NodeConstraint> find_constraints(const std::vector<Vec2>& x, double t0, double t1,
                                                bool crossed_only) const;
   /// The first node whose path x -> x + u crosses a wall (in the frame of a translating wall),
