@@ -54,10 +54,11 @@ bool clip_to_box(Vec2& a, Vec2& b, const Vec2& lo, const Vec2& hi) {
 
 /// The point of a polyline deepest inside a polygon (the farthest from its outline among the
 /// polyline's samples strictly inside it, taken every `step` along each segment's part within
-/// the polygon's bounding box, at most 10^4 of them: a load stays well under a second at any
-/// spacing), and its depth; depth 0 when no sample lies inside. The distance to the outline
-/// changes by at most the samples' spacing between them, so the depth found is within half of it
-/// of the true one.
+/// the polygon's bounding box, and no closer than the polyline's length / 10^4, so that the
+/// whole polyline takes about 10^4 samples at most: a load stays well under a second at any
+/// spacing, the sanitizer build included), and its depth; depth 0 when no sample lies inside.
+/// The distance to the outline changes by at most the samples' spacing between them, so the
+/// depth found is within half of it of the true one.
 struct DeepestPoint {
   double depth = 0.0;
   Vec2 point = Vec2::Zero();
@@ -67,6 +68,10 @@ DeepestPoint deepest_point_inside(std::span<const Vec2> polyline, std::span<cons
                                   double step) {
   Vec2 lo, hi;
   bounding_box(polygon, lo, hi);
+  double length = 0.0;
+  for (std::size_t s = 0; s + 1 < polyline.size(); ++s)
+    length += (polyline[s + 1] - polyline[s]).norm();
+  step = std::max(step, 1e-4 * length);
   DeepestPoint deepest;
   for (std::size_t s = 0; s + 1 < polyline.size(); ++s) {
     Vec2 a = polyline[s];

@@ -43,6 +43,21 @@ double next_increment(const duet::SpfemImplicitOptions& o, double size, double n
   return iterations <= o.easy_iterations ? std::min(nominal, 1.5 * size) : size;
 }
 
+// Why a failed increment of `size` is not halved again, for the failure message.
+std::string why_not_halved(const duet::SpfemImplicitOptions& o, double size, double nominal,
+                           int cuts) {
+  std::ostringstream why;
+  if (!o.adaptive) {
+    why << "spfem.implicit.adaptive = false: increments are never cut";
+  } else {
+    why << "after " << cuts << (cuts == 1 ? " cut" : " cuts") << " of this increment, " << size
+        << " s is the smallest increment allowed (nominal " << nominal << " s / 2^"
+        << o.max_step_cuts << ", spfem.implicit.max_step_cuts"
+        << (cuts == 0 ? "; earlier increments' cuts brought it there" : "") << ")";
+  }
+  return why.str();
+}
+
 }  // namespace
 
 ImplicitSolver::ImplicitSolver(IspfemSetup setup)
@@ -523,9 +538,8 @@ double ImplicitSolver::step(Particles& particles, double time, double end_time) 
     if (!may_halve(o, dt, nominal)) {
       std::ostringstream why;
       why << "Newton did not converge at t = " << time << " s over the increment " << dt
-          << " s (increment " << counters_.increments + 1 << ", after " << cuts
-          << " cuts, at the smallest increment allowed: nominal / 2^" << o.max_step_cuts
-          << "): " << attempt.why
+          << " s (increment " << counters_.increments + 1 << "; "
+          << why_not_halved(o, dt, nominal, cuts) << "): " << attempt.why
           << "; last relative residuals: " << format_residuals(attempt.residuals);
       throw NumericalFailure(why.str());
     }
@@ -554,9 +568,7 @@ void ImplicitSolver::settle(Particles& particles, int increments) {
         settling_ = false;
         std::ostringstream why;
         why << "ispfem gravity loading did not converge at gravity factor " << next << " (from "
-            << factor << ", after " << cuts
-            << " cuts, at the smallest increment allowed: nominal / 2^" << o.max_step_cuts
-            << "): " << attempt.why
+            << factor << "; " << why_not_halved(o, size, nominal, cuts) << "): " << attempt.why
             << "; last relative residuals: " << format_residuals(attempt.residuals);
         throw NumericalFailure(why.str());
       }

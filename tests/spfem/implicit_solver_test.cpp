@@ -1,7 +1,8 @@
 // Tests of the implicit SPFEM driver (spfem/implicit_solver.hpp): a body nothing holds fails
 // with a reason that says so (the quasi-static tangent is singular), and a block on a no-slip
 // floor under gravity presses on it with its weight after one increment (static equilibrium:
-// the reactions are the residual at the constrained nodes).
+// the reactions are the residual at the constrained nodes); a Newton failure says why the
+// increment was not cut further (how many cuts, or that adaptive increments are off).
 #include "spfem/implicit_solver.hpp"
 
 #include <gtest/gtest.h>
@@ -55,6 +56,44 @@ TEST(ImplicitSolver, BodyWithNothingToHoldItFailsSayingTheTangentIsSingular) {
   } catch (const NumericalFailure& e) {
     EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
   }
+}
+
+// The failure says why the increment was not cut further: never "after 0 cuts" (issue 44).
+// Newton is asked for a relative residual of 1e-300 in two iterations, which it cannot reach.
+std::string failure_of_impossible_tolerance(bool adaptive) {
+  Particles p = block(6, 4);
+  IspfemSetup s = setup();
+  NodeBoundary floor;
+  floor.name = "floor";
+  floor.polyline = {Vec2(-0.05, 0.0), Vec2(0.15, 0.0)};
+  floor.condition = NodeCondition::bonded;
+  s.boundaries.push_back(floor);
+  s.implicit.adaptive = adaptive;
+  s.implicit.tolerance = 1e-300;
+  s.implicit.displacement_tolerance = 1e-300;
+  s.implicit.max_iterations = 2;
+  ImplicitSolver solver(std::move(s));
+  solver.initialise(p);
+  try {
+    solver.step(p, 0.0, 1.0);
+  } catch (const NumericalFailure& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ImplicitSolver, AFailureWithoutAdaptiveIncrementsSaysIncrementsAreNeverCut) {
+  const std::string why = failure_of_impossible_tolerance(false);
+  EXPECT_NE(why.find("spfem.implicit.adaptive = false: increments are never cut"),
+            std::string::npos)
+      << why;
+  EXPECT_EQ(why.find("after 0 cuts"), std::string::npos) << why;
+}
+
+TEST(ImplicitSolver, AFailureAfterCutsSaysHowManyAndWhichKeyBoundsThem) {
+  const std::string why = failure_of_impossible_tolerance(true);
+  EXPECT_NE(why.find("after 8 cuts of this increment"), std::string::npos) << why;
+  EXPECT_NE(why.find("spfem.implicit.max_step_cuts"), std::string::npos) << why;
 }
 
 TEST(ImplicitSolver, BlockOnNoSlipFloorPressesWithItsWeight) {
