@@ -98,6 +98,46 @@ double IncrementResidual::relative(const std::vector<Vec2>& u) {
   return scale > 0.0 ? norm / scale : norm;
 }
 
+std::string singular_tangent(const SparseMatrix& tangent, const DofMap& dofs,
+                             const std::vector<Vec2>& positions) {
+  const auto n = static_cast<std::size_t>(tangent.rows());
+  std::vector<double> row_max(n, 0.0), column_max(n, 0.0);
+  double largest = 0.0;
+  for (Eigen::Index c = 0; c < tangent.outerSize(); ++c) {
+    for (SparseMatrix::InnerIterator it(tangent, c); it; ++it) {
+      const double a = std::abs(it.value());
+      row_max[std::size_t(it.row())] = std::max(row_max[std::size_t(it.row())], a);
+      column_max[std::size_t(c)] = std::max(column_max[std::size_t(c)], a);
+      largest = std::max(largest, a);
+    }
+  }
+  std::vector<std::int32_t> nodes;  // of the zero rows and columns, each once
+  for (std::size_t a = 0; a < n; ++a) {
+    if (row_max[a] > 1e-12 * largest && column_max[a] > 1e-12 * largest) continue;
+    if (std::find(nodes.begin(), nodes.end(), dofs.node[a]) == nodes.end()) {
+      nodes.push_back(dofs.node[a]);
+    }
+  }
+  std::ostringstream why;
+  why << "singular tangent (UMFPACK could not factorise it): ";
+  if (nodes.empty()) {
+    why << "no node's row is zero: a mechanism, a group of nodes free to move together that no "
+           "wall, rigid body or stiff neighbour holds";
+    return why.str();
+  }
+  why << nodes.size() << (nodes.size() == 1 ? " node has" : " nodes have")
+      << " no stiffness at Newton's last iterate (a zero row or column of the tangent): ";
+  for (std::size_t k = 0; k < nodes.size() && k < 3; ++k) {
+    const Vec2& x = positions[std::size_t(nodes[k])];
+    why << (k > 0 ? "; " : "") << "node " << nodes[k] << " at x = " << x.x() << " m, y = " << x.y()
+        << " m";
+  }
+  if (nodes.size() > 3) why << "; ...";
+  why << " (its smoothing cells carry no stiffness, as at a cohesionless soil's apex, or no "
+         "triangle holds it)";
+  return why.str();
+}
+
 NewtonOutcome newton_solve(IncrementOperator& op, const DofMap& dofs, IncrementResidual& residual,
                            const std::vector<double>& mass_diagonal,
                            const duet::SpfemImplicitOptions& o, const std::vector<Vec2>& positions,
@@ -136,7 +176,7 @@ NewtonOutcome newton_solve(IncrementOperator& op, const DofMap& dofs, IncrementR
       lu.factorize(op.tangent());
       ++out.factorisations;
       if (lu.info() != Eigen::Success) {
-        out.why = "singular tangent (UMFPACK could not factorise it)";
+        out.why = singular_tangent(op.tangent(), dofs, positions);
         return out;
       }
       du = lu.solve(residual.vector());

@@ -51,6 +51,13 @@ class IncrementResidual {
   double reaction_cap_ = -1.0;  // set at the first evaluation
 };
 
+/// Why UMFPACK found `tangent` singular, where it can be seen: the nodes of the free dofs whose row
+/// or column is zero (below 1e-12 of the largest entry), with their positions; or, with none, that
+/// some group of nodes is a mechanism. A node whose smoothing cells all carry no stiffness (a
+/// cohesionless soil at Drucker-Prager's apex, say) has such a row.
+std::string singular_tangent(const SparseMatrix& tangent, const DofMap& dofs,
+                             const std::vector<Vec2>& positions);
+
 /// What one Newton solve did: its outcome, the relative residual after each iteration, and the
 /// work (added to the solver's counters whether it converged or not).
 struct NewtonOutcome {

@@ -2,7 +2,8 @@
 // with a reason that says so (the quasi-static tangent is singular), and a block on a no-slip
 // floor under gravity presses on it with its weight after one increment (static equilibrium:
 // the reactions are the residual at the constrained nodes); a Newton failure says why the
-// increment was not cut further (how many cuts, or that adaptive increments are off).
+// increment was not cut further (how many cuts, or that adaptive increments are off), and a
+// singular tangent names its nodes without stiffness.
 #include "spfem/implicit_solver.hpp"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include "common/solver.hpp"
 #include "constitutive/registry.hpp"
 #include "spfem/method.hpp"
+#include "spfem/newton_increment.hpp"
 
 namespace duet::spfem {
 namespace {
@@ -94,6 +96,42 @@ TEST(ImplicitSolver, AFailureAfterCutsSaysHowManyAndWhichKeyBoundsThem) {
   const std::string why = failure_of_impossible_tolerance(true);
   EXPECT_NE(why.find("after 8 cuts of this increment"), std::string::npos) << why;
   EXPECT_NE(why.find("spfem.implicit.max_step_cuts"), std::string::npos) << why;
+}
+
+/// Three nodes, one free dof each along x.
+DofMap three_nodes_along_x() {
+  DofMap dofs;
+  dofs.first = {0, 1, 2, 3};
+  dofs.direction.assign(3, Vec2(1.0, 0.0));
+  dofs.node = {0, 1, 2};
+  return dofs;
+}
+
+SparseMatrix sparse(const Eigen::Matrix3d& dense) {
+  return dense.sparseView();
+}
+
+TEST(SingularTangent, NamesTheNodeWhoseRowIsZeroAndWhereItIs) {
+  const std::vector<Vec2> x = {Vec2(0.0, 0.0), Vec2(1.5, 2.5), Vec2(3.0, 0.0)};
+  Eigen::Matrix3d k;
+  k << 2.0, 0.0, -1.0,  //
+      0.0, 0.0, 0.0,    // node 1 carries no stiffness
+      -1.0, 0.0, 2.0;
+  const std::string why = singular_tangent(sparse(k), three_nodes_along_x(), x);
+  EXPECT_NE(why.find("1 node has no stiffness"), std::string::npos) << why;
+  EXPECT_NE(why.find("node 1 at x = 1.5 m, y = 2.5 m"), std::string::npos) << why;
+}
+
+TEST(SingularTangent, WithoutAZeroRowSaysAMechanism) {
+  // A free chain of springs: rows sum to zero (a rigid motion), no row is zero
+  Eigen::Matrix3d k;
+  k << 1.0, -1.0, 0.0,  //
+      -1.0, 2.0, -1.0,  //
+      0.0, -1.0, 1.0;
+  const std::string why =
+      singular_tangent(sparse(k), three_nodes_along_x(), std::vector<Vec2>(3, Vec2::Zero()));
+  EXPECT_NE(why.find("mechanism"), std::string::npos) << why;
+  EXPECT_EQ(why.find("no stiffness"), std::string::npos) << why;
 }
 
 TEST(ImplicitSolver, BlockOnNoSlipFloorPressesWithItsWeight) {
