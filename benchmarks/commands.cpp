@@ -177,7 +177,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
     refuse_if_too_large(scene, method, args->force);
     prepare_output_folder(options.out_dir);
     const RunSummary summary = run_scene(scene, method, options);
-    std::cout << compare_markdown({summary}, 0.0) << "results: " << options.out_dir << '\n';
+    std::cout << compare_markdown({summary}, 0.0, false) << "results: " << options.out_dir << '\n';
     exit_code = run_exit_status(summary);
     if (!args->no_plots && !pending_interrupt()) draw_run_charts(options.out_dir, args->field);
   });

@@ -54,6 +54,27 @@ std::string lookup(const Map& map, const std::string& key) {
   return it == map.end() ? std::string() : format_number(it->second);
 }
 
+/// The signed error of the scored measure with the largest error (NaN when none is scored or its
+/// run recorded no sign): over (+) or under (-) the reference.
+double worst_signed_error(const RunSummary& run) {
+  double worst = -1.0;
+  double signed_error = std::nan("");
+  for (const auto& [name, a] : run.accuracy) {
+    if (a.rel_error > worst) {
+      worst = a.rel_error;
+      signed_error = a.signed_error;
+    }
+  }
+  return signed_error;
+}
+
+/// The warnings in one CSV field, one line of the file: separated by " | " (no warning holds one).
+std::string joined(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const std::string& line : lines) out += (out.empty() ? "" : " | ") + line;
+  return out;
+}
+
 }  // namespace
 
 void write_compare_csv(const std::string& path, const std::vector<RunSummary>& runs) {
@@ -67,7 +88,7 @@ void write_compare_csv(const std::string& path, const std::vector<RunSummary>& r
          << ".rel_error";
   }
   for (const auto& t : c.timing) file << ",timing." << t;
-  file << '\n';
+  file << ",max_signed_error,warnings,warning_messages\n";
   for (const auto& r : runs) {
     file << csv_field(r.scene) << ',' << r.method << ',' << format_number(r.spacing) << ','
          << r.particles << ',' << r.steps << ',' << format_number(r.wall_seconds) << ',' << r.status
@@ -85,11 +106,13 @@ void write_compare_csv(const std::string& path, const std::vector<RunSummary>& r
       }
     }
     for (const auto& t : c.timing) file << ',' << lookup(r.timing, t);
-    file << '\n';
+    file << ',' << format_number(worst_signed_error(r)) << ',' << r.warnings.size() << ','
+         << csv_field(joined(r.warnings)) << '\n';
   }
 }
 
-std::string compare_markdown(const std::vector<RunSummary>& runs, double target) {
+std::string compare_markdown(const std::vector<RunSummary>& runs, double target,
+                             bool list_warnings) {
   const Columns c = columns_of(runs);
   std::ostringstream md;
   // Every measure: the scored ones with their error, then the others (a run's value at its end,
@@ -108,7 +131,9 @@ std::string compare_markdown(const std::vector<RunSummary>& runs, double target)
   for (const auto& r : runs) {
     md << "| " << r.method << " | " << format_number(r.spacing) << " | " << r.particles << " | "
        << r.steps << " | " << format_number(std::round(r.wall_seconds * 100) / 100) << " | "
-       << (r.completed() ? r.status : r.status + ": " + r.failure_reason) << " |";
+       << (r.completed() ? r.status : r.status + ": " + r.failure_reason)
+       << (r.warnings.empty() ? "" : " (warned: " + std::to_string(r.warnings.size()) + ")")
+       << " |";
     for (const auto& s : c.scored) {
       const auto it = r.accuracy.find(s);
       if (it == r.accuracy.end()) {
@@ -141,6 +166,15 @@ std::string compare_markdown(const std::vector<RunSummary>& runs, double target)
       md << ' ' << value << " |";
     }
     md << '\n';
+  }
+  // What each run doubts about its own result, under the table it qualifies
+  bool any_warned = false;
+  for (const auto& r : runs) {
+    for (const std::string& w : list_warnings ? r.warnings : std::vector<std::string>{}) {
+      if (!any_warned) md << "\nWarnings (metrics.json's `warnings`):\n\n";
+      any_warned = true;
+      md << "- " << r.method << " at spacing " << format_number(r.spacing) << " m: " << w << '\n';
+    }
   }
   if (target > 0.0) {
     md << "\nCoarsest spacing with every scored error below " << 100.0 * target << " %:\n\n";

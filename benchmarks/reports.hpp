@@ -12,12 +12,15 @@ namespace duet {
 /// (a run that lacks a field leaves it empty). Failed runs appear with their reason.
 void write_compare_csv(const std::string& path, const std::vector<RunSummary>& runs);
 
-/// The same as a Markdown table, plus the --target choice per method when target > 0.
+/// The same as a Markdown table (a warned run's status says "(warned: N)", its warnings listed
+/// under the table), plus the --target choice per method when target > 0.
 void write_compare_markdown(const std::string& path, const std::vector<RunSummary>& runs,
                             double target);
 
-/// Markdown text of the comparison (also printed by `duet compare`).
-std::string compare_markdown(const std::vector<RunSummary>& runs, double target);
+/// Markdown text of the comparison (also printed by `duet compare`); `duet run`, which has said its
+/// warnings on the terminal already, leaves out their list (list_warnings false).
+std::string compare_markdown(const std::vector<RunSummary>& runs, double target,
+                             bool list_warnings = true);
 
 /// A varied key and the value it took in one stability run.
 struct StabilityCell {

@@ -2,9 +2,12 @@
 """compare.png: scored error against wall time, log-log, one line per method.
 
 Usage: compare.py compare.csv compare.png [title]
-Each point is one (method, spacing) run, labelled by its spacing; failed runs are drawn as red
-crosses on the top edge, numbered, with their reasons listed under the chart, so they are not
-dropped and their labels never overlap. Log axes carry labelled ticks at 1, 2 and 5 of every
+Each point is one (method, spacing) run, labelled by its spacing and the signed error of its worst
+measure, drawn as a triangle pointing up where it over-predicts the reference and down where it
+under-predicts it (a circle where the run recorded no sign); a run that doubts its own result
+(metrics.json's warnings) is ringed in black, its warnings listed under the chart. Failed runs are
+drawn as red crosses on the top edge, numbered, with their reasons listed under the chart, so they
+are not dropped and their labels never overlap. Log axes carry labelled ticks at 1, 2 and 5 of every
 decade (the error in %). A grid with no scored measure (a scene without references) draws each
 measure against spacing and against wall time instead.
 """
@@ -66,19 +69,46 @@ def methods_of(rows):
     return methods
 
 
-def footnote(fig, failed):
-    """Numbered reasons of the failed runs under the axes; returns the height they take (in)."""
-    if not failed:
-        return 0.0
-    lines = []
+def warnings_of(row):
+    """A run's warnings (compare.csv's warning_messages, separated by " | "), or none."""
+    return [w for w in (row.get("warning_messages") or "").split(" | ") if w]
+
+
+def footnote(fig, failed, warned=()):
+    """Numbered reasons of the failed runs and the warned runs' warnings under the axes; returns
+    the height they take (in)."""
+    failed_lines, warned_lines = [], []
     for k, r in enumerate(failed, 1):
         at = number(r.get("failure_time"))
         when = f" at t = {at:.4g} s" if at is not None else ""
         text = f"[{k}] {r['method']} {spacing_label(r['spacing'])}: {r['status']}{when}: " \
                f"{r['failure_reason']}"
-        lines.extend(textwrap.wrap(text, 110, subsequent_indent="     "))
-    fig.text(0.02, 0.01, "\n".join(lines), fontsize=7, va="bottom", ha="left", color="darkred")
-    return 0.16 * len(lines) + 0.1
+        failed_lines.extend(textwrap.wrap(text, 110, subsequent_indent="     "))
+    for r in warned:
+        for w in warnings_of(r):
+            text = f"(!) {r['method']} {spacing_label(r['spacing'])}: {w}"
+            warned_lines.extend(textwrap.wrap(text, 110, subsequent_indent="     "))
+    if warned_lines:
+        fig.text(0.02, 0.01 + 0.16 * len(failed_lines) / 5.2 if failed_lines else 0.01,
+                 "\n".join(warned_lines), fontsize=7, va="bottom", ha="left", color="black")
+    if failed_lines:
+        fig.text(0.02, 0.01, "\n".join(failed_lines), fontsize=7, va="bottom", ha="left",
+                 color="darkred")
+    lines = len(failed_lines) + len(warned_lines)
+    return 0.16 * lines + 0.1 if lines else 0.0
+
+
+def point_label(row):
+    """The run's spacing and its worst measure's signed error."""
+    signed = number(row.get("max_signed_error"))
+    return spacing_label(row["spacing"]) + (f" ({100 * signed:+.1f} %)" if signed is not None
+                                            else "")
+
+
+def point_marker(row):
+    """Up: over the reference; down: under it; a circle where no sign was recorded."""
+    signed = number(row.get("max_signed_error"))
+    return "o" if signed is None else ("^" if signed > 0 else "v")
 
 
 def error_chart(rows, target, title):
@@ -96,10 +126,13 @@ def error_chart(rows, target, title):
         if ok:
             x = [number(r["wall_seconds"]) for r in ok]
             y = [number(r["max_rel_error"]) for r in ok]
-            (line,) = ax.plot(x, y, "o-", label=method)
+            (line,) = ax.plot(x, y, "-", label=method)
             color = line.get_color()
             for r, xi, yi in zip(ok, x, y):
-                ax.annotate(spacing_label(r["spacing"]), (xi, yi), textcoords="offset points",
+                ax.plot([xi], [yi], point_marker(r), color=color, ms=7)
+                if warnings_of(r):
+                    ax.plot([xi], [yi], "o", ms=14, mfc="none", mec="black", mew=1.2)
+                ax.annotate(point_label(r), (xi, yi), textcoords="offset points",
                             xytext=(5, 4), fontsize=7, color=color)
     for k, r in enumerate(failed, 1):
         x = number(r["wall_seconds"]) or 1e-3
@@ -121,8 +154,19 @@ def error_chart(rows, target, title):
     ax.set_title(title)
     ax.grid(True, which="major", alpha=0.35)
     if any(ax.get_legend_handles_labels()[1]):
-        ax.legend()
-    note = footnote(fig, failed)
+        handles, labels = ax.get_legend_handles_labels()
+        signs = {point_marker(r) for r in rows if r["status"] == "completed"}
+        for marker, meaning in (("^", "over the reference"), ("v", "under the reference")):
+            if marker in signs:
+                handles.append(plt.Line2D([], [], ls="none", marker=marker, color="gray"))
+                labels.append(meaning)
+        if any(warnings_of(r) for r in rows if r["status"] == "completed"):
+            handles.append(plt.Line2D([], [], ls="none", marker="o", ms=10, mfc="none",
+                                      mec="black"))
+            labels.append("warned (listed below)")
+        ax.legend(handles, labels, fontsize=8)
+    warned = [r for r in rows if r["status"] == "completed" and warnings_of(r)]
+    note = footnote(fig, failed, warned)
     fig.tight_layout(rect=(0, min(note / 5.2, 0.5), 1, 1))
     fig.savefig(target, dpi=120)
 

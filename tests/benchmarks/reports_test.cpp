@@ -78,6 +78,30 @@ TEST(CompareMarkdown, AnErrorIsSignedAndACurveSaysWhereItsLargestIs) {
   EXPECT_NE(md.find("| 2.0 % |"), std::string::npos) << md;  // no sign recorded
 }
 
+TEST(CompareMarkdown, AWarnedRunSaysSoAndItsWarningsFollowTheTable) {
+  RunSummary warned = make_run("ispfem", 0.1, 0.05, 2.0);
+  warned.warnings = {"load-drop: the load fell by 12 %"};
+  const std::vector<RunSummary> runs = {warned, make_run("sph", 0.1, 0.02, 1.0)};
+  const std::string md = compare_markdown(runs, 0.0);
+  EXPECT_NE(md.find("| completed (warned: 1) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("- ispfem at spacing 0.1 m: load-drop: the load fell by 12 %"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(compare_markdown(runs, 0.0, false).find("load-drop"), std::string::npos);
+}
+
+TEST(CompareCsv, EachRunHasItsWorstSignedErrorAndItsWarnings) {
+  const auto dir = std::filesystem::temp_directory_path() / "duet_reports_test_warnings";
+  std::filesystem::create_directories(dir);
+  RunSummary under = make_run("ispfem", 0.1, 0.149, 2.0);
+  under.accuracy["runout"].signed_error = -0.149;
+  under.warnings = {"not at rest", "load-drop, 12 %"};
+  write_compare_csv((dir / "compare.csv").string(), {under});
+  const std::string csv = read_file(dir / "compare.csv");
+  EXPECT_NE(csv.find(",max_signed_error,warnings,warning_messages\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",-0.149,2,\"not at rest | load-drop, 12 %\"\n"), std::string::npos) << csv;
+}
+
 TEST(CompareCsv, FailedRunsAppearWithTheirReason) {
   const auto dir = std::filesystem::temp_directory_path() / "duet_reports_test";
   std::filesystem::create_directories(dir);
