@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "common/geometry.hpp"
+#include "constitutive/registry.hpp"
 
 namespace duet {
 
@@ -245,10 +246,7 @@ LoadDrop largest_load_drop(const std::vector<double>& time, const std::vector<do
 bool cannot_soften(const Scene& scene) {
   if (scene.strength_reduction.factor != 1.0) return false;
   for (const Material& m : scene.materials) {
-    if (m.model != "linear-elastic" && m.model != "tresca" && m.model != "mohr-coulomb" &&
-        m.model != "drucker-prager") {
-      return false;
-    }
+    if (constitutive::builtin_models().find(m.model).softens) return false;
   }
   return true;
 }

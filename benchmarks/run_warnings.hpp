@@ -42,9 +42,9 @@ struct LoadDrop {
 };
 LoadDrop largest_load_drop(const std::vector<double>& time, const std::vector<double>& load);
 
-/// No material can soften and the strength stays as given: every model elastic or perfectly
-/// plastic (linear-elastic, tresca, mohr-coulomb, drucker-prager; hypoplastic and simhypo-sand
-/// can soften) and no strength reduction.
+/// No material can soften and the strength stays as given: every material's model says it cannot
+/// (constitutive::ModelInfo::softens false: elasticity and perfect plasticity) and no strength
+/// reduction runs.
 bool cannot_soften(const Scene& scene);
 
 /// - a deposit not at rest: a dynamic method, gravity, nothing driven at the end (every wall and

@@ -310,7 +310,9 @@ void register_drucker_prager(ModelRegistry& registry) {
          return std::make_unique<DruckerPrager>(elastic, cone, cutoff);
        },
        // Bui 2008 aluminium bars.
-       {{"E", 5.84e6}, {"nu", 0.3}, {"phi", 19.8}, {"psi", 0.0}, {"c", 0.0}}});
+       {{"E", 5.84e6}, {"nu", 0.3}, {"phi", 19.8}, {"psi", 0.0}, {"c", 0.0}},
+       {},
+       /*softens=*/false});
 }
 
 }  // namespace duet::constitutive

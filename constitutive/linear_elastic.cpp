@@ -53,7 +53,9 @@ void register_linear_elastic(ModelRegistry& registry) {
                 [](Parameters& p) -> std::unique_ptr<Model> {
                   return std::make_unique<LinearElastic>(ElasticParameters::read(p));
                 },
-                {{"E", 10e6}, {"nu", 0.3}}});
+                {{"E", 10e6}, {"nu", 0.3}},
+                {},
+                /*softens=*/false});
 }
 
 }  // namespace duet::constitutive

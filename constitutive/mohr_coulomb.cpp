@@ -129,7 +129,9 @@ void register_mohr_coulomb(ModelRegistry& registry) {
                   return std::make_unique<MohrCoulomb>(elastic, phi, psi, c);
                 },
                 // A sand-like example: E 10 MPa, nu 0.3, phi 30, psi 0, cohesionless.
-                {{"E", 10e6}, {"nu", 0.3}, {"phi", 30.0}, {"psi", 0.0}, {"c", 0.0}}});
+                {{"E", 10e6}, {"nu", 0.3}, {"phi", 30.0}, {"psi", 0.0}, {"c", 0.0}},
+                {},
+                /*softens=*/false});
 }
 
 }  // namespace duet::constitutive

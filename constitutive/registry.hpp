@@ -26,6 +26,10 @@ struct ModelInfo {
   // Valid parameter sets of the model's other forms (hypoplastic: c1..c4 in place of Ei nu phi
   // psi), so `duet models` lists every parameter the model reads.
   std::vector<std::map<std::string, ParameterValue>> other_forms = {};
+  // Whether its strength can fall with its own state (a dense hypoplastic sand past its peak);
+  // false for elasticity and perfect plasticity, whose load on a driven body does not fall (the
+  // run's load-drop warning, benchmarks/run_warnings.hpp). True unless a model says otherwise.
+  bool softens = true;
 };
 
 class ModelRegistry {

@@ -112,7 +112,9 @@ void register_tresca(ModelRegistry& registry) {
                 },
                 // Zhang 2018 footing (slides fig 12a): rigidity index I_r = G/c_u = 33.4;
                 // E/c_u = 100 with nu = 0.49 gives I_r = 33.6.
-                {{"E", 1e7}, {"nu", 0.49}, {"cu", 1e5}}});
+                {{"E", 1e7}, {"nu", 0.49}, {"cu", 1e5}},
+                {},
+                /*softens=*/false});
 }
 
 }  // namespace duet::constitutive

@@ -197,6 +197,12 @@ TEST(RunWarnings, NoLoadDropWhereAMaterialCanSoftenOrTheStrengthIsReduced) {
   scene.strength_reduction.factor = 1.0;
   scene.materials[1].model = "hypoplastic";  // dense sand softens past its peak
   EXPECT_FALSE(cannot_soften(scene));
+  scene.materials[1].model = "simhypo-sand";
+  EXPECT_FALSE(cannot_soften(scene));
+  scene.materials[1].model = "mohr-coulomb";
+  EXPECT_TRUE(cannot_soften(scene));
+  scene.materials[1].model = "linear-elastic";
+  EXPECT_TRUE(cannot_soften(scene));
 }
 
 TEST(RunWarnings, AFootingStartingAboveTheSoilIsWarnedOfByTheRun) {
