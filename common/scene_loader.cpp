@@ -9,6 +9,7 @@
 
 #include <toml++/toml.h>
 
+#include "common/enum_names.hpp"
 #include "common/geometry.hpp"
 #include "common/input_error.hpp"
 #include "common/reference_curve.hpp"
@@ -247,11 +248,8 @@ Wall read_wall(const std::string& name, SectionReader& r) {
              "a polyline of distinct consecutive [x, y] points");
     }
   }
-  const std::string condition =
-      r.choice("condition", {"no-slip", "free-slip", "symmetry"}, "no-slip");
-  w.condition = condition == "no-slip"     ? WallCondition::no_slip
-                : condition == "free-slip" ? WallCondition::free_slip
-                                           : WallCondition::symmetry;
+  w.condition = value_named(r.choice("condition", names_of(kWallConditionNames), "no-slip"),
+                            kWallConditionNames);
   if (r.has("radial_velocity")) {
     if (r.has("velocity")) {
       r.fail("velocity", "given together with radial_velocity",
@@ -272,10 +270,7 @@ RigidBody read_rigid_body(const std::string& name, SectionReader& r) {
   rb.name = name;
   rb.outline = read_polygon(r, "vertices");
   rb.velocity = r.schedule("velocity", 3);
-  const std::string surface = r.choice("surface", {"rough", "smooth", "friction"}, "rough");
-  rb.surface = surface == "rough"    ? Surface::rough
-               : surface == "smooth" ? Surface::smooth
-                                     : Surface::friction;
+  rb.surface = value_named(r.choice("surface", names_of(kSurfaceNames), "rough"), kSurfaceNames);
   if (rb.surface == Surface::friction) {
     rb.friction = r.number("friction", non_negative("a friction coefficient mu (-)"));
   }
@@ -301,11 +296,8 @@ Load read_load(const std::string& name, SectionReader& r) {
 Measure read_measure(const std::string& name, SectionReader& r) {
   Measure m;
   m.name = name;
-  const std::vector<std::string> kinds = {
-      "front",        "height", "reaction",      "wall_stress", "max_displacement",
-      "displacement", "period", "safety_factor", "expansion",   "point_displacement"};
-  const std::string kind = r.choice("kind", kinds, std::nullopt);
-  m.kind = static_cast<MeasureKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
+  m.kind =
+      value_named(r.choice("kind", names_of(kMeasureKindNames), std::nullopt), kMeasureKindNames);
   if (m.kind != MeasureKind::safety_factor) m.target = r.string("target");
   switch (m.kind) {
     case MeasureKind::reaction:
@@ -326,9 +318,7 @@ Measure read_measure(const std::string& name, SectionReader& r) {
     default:
       break;
   }
-  const std::vector<std::string> ats = {"end", "max", "series", "time", "curve"};
-  const std::string at = r.choice("at", ats, "end");
-  m.at = static_cast<MeasureAt>(std::find(ats.begin(), ats.end(), at) - ats.begin());
+  m.at = value_named(r.choice("at", names_of(kMeasureAtNames), "end"), kMeasureAtNames);
   if (m.at == MeasureAt::time) {
     m.time = r.number("time", non_negative("a time (s)"));
     m.window = r.number("window", 0.0, non_negative("a duration (s)"));
@@ -409,10 +399,8 @@ Reference read_reference(const std::string& measure, SectionReader& r,
 
 InitialStress read_initial_stress(SectionReader& r) {
   InitialStress s;
-  const std::vector<std::string> kinds = {"none", "isotropic", "geostatic", "gravity-loading"};
-  const std::string kind = r.choice("kind", kinds, "none");
-  s.kind =
-      static_cast<InitialStressKind>(std::find(kinds.begin(), kinds.end(), kind) - kinds.begin());
+  s.kind = value_named(r.choice("kind", names_of(kInitialStressKindNames), "none"),
+                       kInitialStressKindNames);
   if (s.kind == InitialStressKind::isotropic) {
     s.pressure = r.number("pressure", positive("a compressive pressure (Pa)"));
   } else if (s.kind == InitialStressKind::geostatic) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/enum_names.hpp"
 #include "common/input_error.hpp"
 #include "common/suggest.hpp"
 
@@ -307,75 +308,19 @@ void SectionReader::finish(const std::vector<std::string>& not_mine) const {
 namespace duet {
 
 const char* to_string(WallCondition c) {
-  switch (c) {
-    case WallCondition::no_slip:
-      return "no-slip";
-    case WallCondition::free_slip:
-      return "free-slip";
-    case WallCondition::symmetry:
-      return "symmetry";
-  }
-  return "?";
+  return name_of(c, kWallConditionNames);
 }
 const char* to_string(Surface s) {
-  switch (s) {
-    case Surface::rough:
-      return "rough";
-    case Surface::smooth:
-      return "smooth";
-    default:
-      return "friction";
-  }
+  return name_of(s, kSurfaceNames);
 }
 const char* to_string(InitialStressKind k) {
-  switch (k) {
-    case InitialStressKind::none:
-      return "none";
-    case InitialStressKind::isotropic:
-      return "isotropic";
-    case InitialStressKind::geostatic:
-      return "geostatic";
-    default:
-      return "gravity-loading";
-  }
+  return name_of(k, kInitialStressKindNames);
 }
 const char* to_string(MeasureKind k) {
-  switch (k) {
-    case MeasureKind::front:
-      return "front";
-    case MeasureKind::height:
-      return "height";
-    case MeasureKind::reaction:
-      return "reaction";
-    case MeasureKind::wall_stress:
-      return "wall_stress";
-    case MeasureKind::max_displacement:
-      return "max_displacement";
-    case MeasureKind::displacement:
-      return "displacement";
-    case MeasureKind::period:
-      return "period";
-    case MeasureKind::expansion:
-      return "expansion";
-    case MeasureKind::point_displacement:
-      return "point_displacement";
-    default:
-      return "safety_factor";
-  }
+  return name_of(k, kMeasureKindNames);
 }
 const char* to_string(MeasureAt a) {
-  switch (a) {
-    case MeasureAt::end:
-      return "end";
-    case MeasureAt::max:
-      return "max";
-    case MeasureAt::series:
-      return "series";
-    case MeasureAt::curve:
-      return "curve";
-    default:
-      return "time";
-  }
+  return name_of(a, kMeasureAtNames);
 }
 const char* to_string(SphKernel k) {
   return k == SphKernel::cubic_spline ? "cubic-spline" : "wendland-c2";

@@ -8,11 +8,13 @@
 #include <fstream>
 #include <numbers>
 #include <regex>
+#include <set>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "benchmarks/scene_input.hpp"
+#include "common/enum_names.hpp"
 #include "common/input_error.hpp"
 #include "constitutive/registry.hpp"
 #include "tests/common/column_scene.hpp"
@@ -30,6 +32,32 @@ std::string refusal(const std::string& text, const std::vector<std::string>& ove
     return e.what();
   }
   return "";
+}
+
+/// Each name of a table reads back as itself, and no two names share a value (the loader and the
+/// resolved scene go through the same table: a value missing or named twice would write one kind
+/// as another).
+template <class Enum, std::size_t N>
+void expect_names_round_trip(const EnumName<Enum> (&table)[N]) {
+  std::set<int> values;
+  for (const std::string& name : names_of(table)) {
+    const Enum value = value_named(name, table);
+    EXPECT_EQ(std::string(name_of(value, table)), name);
+    EXPECT_TRUE(values.insert(static_cast<int>(value)).second) << name << " shares its value";
+  }
+  // The enum's values are 0 .. N-1, each named
+  for (int k = 0; k < static_cast<int>(N); ++k) EXPECT_EQ(values.count(k), 1u) << k;
+}
+
+TEST(SceneLoader, EveryEnumNameReadsBackAsItself) {
+  expect_names_round_trip(kMeasureKindNames);
+  expect_names_round_trip(kMeasureAtNames);
+  expect_names_round_trip(kInitialStressKindNames);
+  expect_names_round_trip(kWallConditionNames);
+  expect_names_round_trip(kSurfaceNames);
+  EXPECT_STREQ(to_string(MeasureKind::point_displacement), "point_displacement");
+  EXPECT_STREQ(to_string(InitialStressKind::gravity_loading), "gravity-loading");
+  EXPECT_THROW(name_of(static_cast<MeasureKind>(99), kMeasureKindNames), std::logic_error);
 }
 
 TEST(SceneLoader, FillsEveryDefaultFromThePapers) {
