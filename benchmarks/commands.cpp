@@ -478,6 +478,10 @@ void add_demo_command(CLI::App& app, int& exit_code) {
     write_compare_csv(*out + "/compare.csv", runs);
     write_compare_markdown(*out + "/compare.md", runs, 0.0);
     draw_chart("compare.py", {*out + "/compare.csv", *out + "/compare.png", "collapse (demo)"});
+    std::vector<std::string> snapshots = {*out + "/snapshots_equivalent_strain.png",
+                                          "equivalent_strain"};
+    for (const RunSummary& r : runs) snapshots.push_back(r.out_dir);
+    if (!runs.empty()) draw_chart("snapshots.py", snapshots);
     std::cout << compare_markdown(runs, 0.0) << "results: " << *out << '\n';
     exit_code = pending_interrupt() ? interrupted_exit_status(pending_interrupt()) : 0;
   });

@@ -256,6 +256,12 @@ std::string write_grid_reports(const Grid& grid, const std::string& grid_dir) {
     write_compare_csv(grid_dir + "/compare.csv", runs);
     write_compare_markdown(grid_dir + "/compare.md", runs, grid.target);
     draw_chart("compare.py", {grid_dir + "/compare.csv", grid_dir + "/compare.png", grid.title});
+    // Every run's frames side by side on one colour scale (each run's own chart has its own)
+    std::vector<std::string> snapshots = {grid_dir + "/snapshots_von_mises.png", "von_mises"};
+    for (const RunSummary& r : runs) {
+      if (fs::exists(r.out_dir + "/run.h5")) snapshots.push_back(r.out_dir);
+    }
+    if (snapshots.size() > 2) draw_chart("snapshots.py", snapshots);
     return compare_markdown(runs, grid.target);
   }
   std::vector<StabilityCell> cells;

@@ -10,7 +10,9 @@ Usage: run.py RUN_DIR [FIELD]
   expansion_<target>.png  a radial wall's pressure against a / a0 (a cavity)
   collapse_<body>.png     a body's run-out and height against time (a collapse)
   snapshots_<FIELD>.png   the particles at the first, middle and last frame coloured by FIELD
-                          (default von_mises), walls and rigid bodies drawn where they were
+                          (default von_mises), walls and rigid bodies drawn where they were; the
+                          middle frame is mid-flow (the largest kinetic energy) where the motion
+                          peaks and dies down within the run, else the frame half way
 Prints the files written, one per line. A failed or interrupted run is drawn too, its status and
 reason in every title.
 """
@@ -255,53 +257,116 @@ def plot_curves(run):
         run.save(fig, f"curve_{name}.png")
 
 
-def plot_snapshots(run, field):
-    if not run.frames:
-        return
-    picks = sorted({0, len(run.frames) // 2, len(run.frames) - 1})
+def kinetic_energy(group):
+    """The frame's kinetic energy per unit thickness (J/m), from its particles' mass and velocity."""
+    if "mass" not in group or "velocity" not in group:
+        return float("nan")
+    v = group["velocity"][:, :2]
+    return 0.5 * float(np.sum(group["mass"][()] * np.sum(v * v, axis=1)))
+
+
+def middle_frame(run):
+    """Mid-flow: the frame of the largest kinetic energy where the motion peaks inside the run and
+    dies down by its end (a collapse, a landslide); otherwise the frame half way (a driven footing
+    moves at one speed throughout, a static run not at all)."""
+    half = len(run.frames) // 2
+    energies = [kinetic_energy(run.h5["frames"][name]) for name in run.frames]
+    if len(energies) < 3 or not all(math.isfinite(e) for e in energies):
+        return half
+    peak = int(np.argmax(energies))
+    if 0 < peak < len(energies) - 1 and energies[-1] < 0.5 * energies[peak]:
+        return peak
+    return half
+
+
+def frame_time(run, k):
+    return float(run.h5["frames"][run.frames[k]].attrs["time"])
+
+
+def nearest_frame(run, t):
+    """The index of the run's frame nearest time t."""
+    return min(range(len(run.frames)), key=lambda k: abs(frame_time(run, k) - t))
+
+
+def snapshot_frames(run, field, middle=None):
+    """The first, middle and last frames of a run (h5 groups), checked to hold `field`; the
+    middle one is mid-flow (middle_frame) unless given (an index)."""
+    middle = middle_frame(run) if middle is None else middle
+    picks = sorted({0, middle, len(run.frames) - 1})
     groups = [run.h5["frames"][run.frames[k]] for k in picks]
     if field not in groups[0] or not isinstance(groups[0][field], h5py.Dataset):
         n = groups[0]["position"].shape[0]
         available = [k for k, v in groups[0].items()
                      if isinstance(v, h5py.Dataset) and v.shape == (n,) and k != "vertices"]
-        raise SystemExit(f"run.py: no field '{field}' in the frames; one of {', '.join(available)}")
+        # "run.py: " marks a user's mistake: `duet plot` says it as an input error (exit 2)
+        raise SystemExit(f"run.py: no field '{field}' in the frames; one of "
+                         f"{', '.join(available)}")
+    return groups
+
+
+def colour_range(groups, field):
+    """The 1st to 99th percentile of the field over the frames (one outlier does not wash out the
+    rest)."""
     values = [g[field][()] for g in groups]
     finite = np.concatenate([v[np.isfinite(v)] for v in values]) if values else np.array([])
     lo, hi = (np.percentile(finite, 1), np.percentile(finite, 99)) if finite.size else (0, 1)
-    if hi <= lo:
-        hi = lo + 1.0
-    spacing = float(run.h5["meta"].attrs["spacing"])
+    return (lo, hi if hi > lo else lo + 1.0)
+
+
+def extent(groups, spacing):
+    """x and y limits holding every particle and boundary of the frames, a spacing around."""
     everything = np.concatenate([g["position"][:, :2] for g in groups] +
                                 [g["boundary_points"][:, :2] for g in groups
                                  if "boundary_points" in g])
-    xmin, ymin = everything.min(axis=0) - spacing
-    xmax, ymax = everything.max(axis=0) + spacing
+    (xmin, ymin), (xmax, ymax) = everything.min(axis=0) - spacing, everything.max(axis=0) + spacing
+    return xmin, xmax, ymin, ymax
+
+
+def draw_frame(fig, ax, g, field, spacing, limits, colours):
+    """One frame: a square marker per particle the size of its cell, coloured on `colours` (lo,
+    hi), walls and rigid bodies where they were."""
+    xmin, xmax, ymin, ymax = limits
+    x = g["position"][:, :2]
+    ax.set_xlim(xmin, xmax)
+    points_per_metre = ax.get_window_extent().width / (xmax - xmin) * 72 / fig.dpi
+    size = max((spacing * points_per_metre) ** 2, 0.25)
+    art = ax.scatter(x[:, 0], x[:, 1], c=g[field][()], s=size, marker="s", cmap="viridis",
+                     vmin=colours[0], vmax=colours[1], linewidths=0)
+    if "boundary_points" in g:
+        p = g["boundary_points"][:, :2]
+        segments = [[p[a], p[b]] for a, b in g["boundary_segments"][()]]
+        ax.add_collection(LineCollection(segments, colors="k", linewidths=1.6))
+    ax.set_xlim(xmin, xmax)
+    ax.set_ylim(ymin, ymax)
+    ax.set_aspect("equal")
+    ax.set_title(f"t = {float(g.attrs['time']):.4g} s", fontsize=9)
+    ax.set_xlabel("x (m)")
+    return art
+
+
+def field_label(field):
+    unit = FIELD_UNITS.get(field)
+    return f"{field} ({unit})" if unit else field
+
+
+def plot_snapshots(run, field):
+    if not run.frames:
+        return
+    groups = snapshot_frames(run, field)
+    spacing = float(run.h5["meta"].attrs["spacing"])
+    limits = extent(groups, spacing)
+    xmin, xmax, ymin, ymax = limits
     aspect = min(max((ymax - ymin) / max(xmax - xmin, 1e-12), 0.25), 2.0)
     panel = 4.0
     fig, axes = plt.subplots(1, len(groups), figsize=(panel * len(groups) + 1.2,
                                                       panel * aspect + 1.3),
                              squeeze=False, layout="constrained")
     fig.canvas.draw()  # lay out first: the marker size needs the axes' size
+    colours = colour_range(groups, field)
     for ax, g in zip(axes[0], groups):
-        x = g["position"][:, :2]
-        # One square marker per particle, the size of its cell (dp in points on this axis).
-        ax.set_xlim(xmin, xmax)
-        points_per_metre = ax.get_window_extent().width / (xmax - xmin) * 72 / fig.dpi
-        size = max((spacing * points_per_metre) ** 2, 0.25)
-        art = ax.scatter(x[:, 0], x[:, 1], c=g[field][()], s=size, marker="s", cmap="viridis",
-                         vmin=lo, vmax=hi, linewidths=0)
-        if "boundary_points" in g:
-            p = g["boundary_points"][:, :2]
-            segments = [[p[a], p[b]] for a, b in g["boundary_segments"][()]]
-            ax.add_collection(LineCollection(segments, colors="k", linewidths=1.6))
-        ax.set_xlim(xmin, xmax)
-        ax.set_ylim(ymin, ymax)
-        ax.set_aspect("equal")
-        ax.set_title(f"t = {float(g.attrs['time']):.4g} s", fontsize=9)
-        ax.set_xlabel("x (m)")
+        art = draw_frame(fig, ax, g, field, spacing, limits, colours)
     axes[0][0].set_ylabel("y (m)")
-    unit = FIELD_UNITS.get(field)
-    fig.colorbar(art, ax=list(axes[0]), shrink=0.9, label=f"{field} ({unit})" if unit else field)
+    fig.colorbar(art, ax=list(axes[0]), shrink=0.9, label=field_label(field))
     run.title(fig, f"{field}")
     run.save(fig, f"snapshots_{field}.png")
 
@@ -321,4 +386,5 @@ def main():
         print(path)
 
 
-main()
+if __name__ == "__main__":
+    main()
