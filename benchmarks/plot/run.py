@@ -4,7 +4,8 @@
 Usage: run.py RUN_DIR [FIELD]
   series.png              every measure of /series against time
   load_<target>.png       a wall's or rigid body's force against its displacement, when the scene
-                          records both as series (a footing: load against settlement)
+                          records both as series (a footing: load against settlement), each
+                          quantity once (not again in another scale) with its reference curve
   curve_<measure>.png     a measure with at = "curve" against its abscissa, with its reference
                           curve or value and the scored window
   expansion_<target>.png  a radial wall's pressure against a / a0 (a cavity)
@@ -139,23 +140,65 @@ def plot_series(run):
     run.save(fig, "series.png")
 
 
+def same_quantity(a, b):
+    """Two measures of one quantity that differ at most in scale and in when they report it (the
+    footing's load in N/m and its q / c_u)."""
+    return all(a.get(k) == b.get(k) for k in ("kind", "target", "component", "divide_by", "point"))
+
+
+def scale_of(measure):
+    return float(measure.get("scale", 1.0))
+
+
 def series_of(run, kinds, target):
-    """Names of the recorded series of `kinds` on `target`, in the scene's order; a series equal
-    to an earlier one (the same quantity measured at the end and as a series) once."""
+    """Names of the recorded series of `kinds` on `target`, each quantity once (one measured in two
+    scales is drawn once): the one with a reference curve where there is one, else the first in
+    the scene's order."""
+    measures = run.scene.get("measure", {})
+    references = run.scene.get("reference", {})
     out = []
-    for name, m in run.scene.get("measure", {}).items():
-        if m.get("kind") in kinds and m.get("target") == target and name in run.series:
-            if not any(np.array_equal(run.series[name], run.series[o]) for o in out):
-                out.append(name)
+    for name, m in measures.items():
+        if m.get("kind") not in kinds or m.get("target") != target or name not in run.series:
+            continue
+        twin = next((k for k, o in enumerate(out) if same_quantity(measures[o], m)), None)
+        if twin is None:
+            out.append(name)
+        elif "points" in references.get(name, {}) and "points" not in references.get(out[twin], {}):
+            out[twin] = name
     return out
 
 
-def force_panels(run, x, xlabel, forces, what, name):
-    """One panel per force measure against `x` (a displacement, a ratio), saved as `name`."""
+def reference_against(run, force, move):
+    """The reference curve of `force` (or of a measure of the same quantity) in the units of the
+    chart: x as |move|, y as `force`; None where there is none or its abscissa is not `move`'s
+    quantity."""
     measures = run.scene.get("measure", {})
-    fig, axes = plt.subplots(1, len(forces), figsize=(5.0 * len(forces), 4.0), squeeze=False)
+    for name, ref in run.scene.get("reference", {}).items():
+        m = measures.get(name)
+        if m is None or "points" not in ref or not same_quantity(m, measures[force]):
+            continue
+        a = measures.get(m.get("abscissa", ""))
+        if a is None or not same_quantity(a, measures[move]):
+            continue
+        pts = np.array(ref["points"], dtype=float)
+        x = np.abs(pts[:, 0] / scale_of(a) * scale_of(measures[move]))
+        y = pts[:, 1] / scale_of(m) * scale_of(measures[force])
+        return x, y, ref.get("source", name)
+    return None
+
+
+def force_panels(run, x, xlabel, forces, what, name, move=None):
+    """One panel per force measure against `x` (a displacement, a ratio), with its reference curve
+    where the scene has one against `move`, saved as `name`."""
+    measures = run.scene.get("measure", {})
+    fig, axes = plt.subplots(1, len(forces), figsize=(max(5.0 * len(forces), 6.5), 4.2),
+                             squeeze=False)
     for ax, force in zip(axes[0], forces):
-        ax.plot(x, run.series[force], lw=1.4)
+        ax.plot(x, run.series[force], lw=1.4, label=f"{force} ({run.label})")
+        reference = reference_against(run, force, move) if move else None
+        if reference is not None:
+            ax.plot(reference[0], reference[1], "k--", lw=1.0, label=wrap(reference[2], 60))
+            ax.legend(fontsize=7, loc="lower right")
         ax.set_xlabel(xlabel)
         ax.set_ylabel(f"{force} ({unit_of(measures[force])})")
         ax.grid(alpha=0.3)
@@ -177,7 +220,7 @@ def plot_load_displacement(run):
         force_panels(run, np.abs(run.series[move]),
                      f"|{move}| (m: {measures[move].get('component', '')} displacement of "
                      f"{target})", forces, f"load against displacement of {target}",
-                     f"load_{target}.png")
+                     f"load_{target}.png", move)
 
 
 def plot_expansion(run):
