@@ -165,5 +165,23 @@ TEST(AccuracySummary, NamesPerBenchmarkTheCoarsestSpacingAndTheCheapestMethod) {
   EXPECT_NE(md.find("| collapse | no method meets the target |"), std::string::npos) << md;
 }
 
+// README's demo block is the demo's own compare.md (benchmarks/results/demo/regenerate.sh copies
+// it), not numbers typed by hand: the two agree line for line.
+TEST(ReadmeDemo, TheBlockIsTheDemosCompareMdLessItsTitle) {
+  const std::filesystem::path root = DUET_SOURCE_DIR;
+  const std::string readme = read_file(root / "README.md");
+  const std::string begin = "<!-- demo:begin -->\n", end = "<!-- demo:end -->";
+  const auto from = readme.find(begin), to = readme.find(end);
+  ASSERT_NE(from, std::string::npos);
+  ASSERT_NE(to, std::string::npos);
+  const std::string block = readme.substr(from + begin.size(), to - from - begin.size());
+  std::string table = read_file(root / "benchmarks/results/demo/compare.md");
+  table = table.substr(table.find('\n') + 1);           // its title line
+  table = table.substr(table.find_first_not_of('\n'));  // and the blank line after it
+  while (!table.empty() && table.back() == '\n') table.pop_back();
+  EXPECT_EQ(block, table + "\n");
+  EXPECT_NE(block.find("| sph | 0.01 |"), std::string::npos) << block;
+}
+
 }  // namespace
 }  // namespace duet
