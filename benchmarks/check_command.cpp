@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -189,9 +190,27 @@ void add_check_command(CLI::App& app, int& exit_code) {
       methods.push_back(&builtin_methods().find(args->method));
     }
     for (const MethodInfo* m : methods) refuse_if_too_large(scene, *m, args->force);
+    // What a method refuses when it builds its solver (ispfem: a body set moving, a face no
+    // static equilibrium holds), as `duet run` would: an error for the method asked for, a line
+    // for each of the others
+    std::map<const MethodInfo*, std::string> refusals;
+    for (const MethodInfo* m : methods) {
+      try {
+        m->make(scene);
+      } catch (const InputError& e) {
+        if (!args->method.empty()) throw;
+        refusals[m] = e.what();
+      }
+    }
     print_scene(scene, std::cout);
     const double wave_speed = largest_wave_speed(scene);
-    for (const MethodInfo* m : methods) print_method(scene, *m, wave_speed, std::cout);
+    for (const MethodInfo* m : methods) {
+      if (refusals.count(m) != 0) {
+        std::cout << "  " << m->name << ": refused (duet run exits 2): " << refusals[m] << '\n';
+      } else {
+        print_method(scene, *m, wave_speed, std::cout);
+      }
+    }
     exit_code = 0;
   });
 }

@@ -7,6 +7,7 @@
 #include "common/input_error.hpp"
 #include "common/scene.hpp"
 #include "common/scene_loads.hpp"
+#include "common/standing_faces.hpp"
 #include "common/strength_reduction.hpp"
 #include "constitutive/scene_models.hpp"
 #include "spfem/explicit_solver.hpp"
@@ -75,6 +76,14 @@ IspfemSetup make_implicit_setup(const Scene& scene) {
       throw InputError("body." + b.name +
                        ".initial_velocity: ispfem is quasi-static by default and cannot start a "
                        "body moving; set spfem.implicit.dynamics = \"newmark\" for inertia");
+    }
+  }
+  if (!scene.spfem_implicit.newmark) {
+    const std::string steep = face_steeper_than_friction(scene);
+    if (!steep.empty()) {
+      throw InputError(steep +
+                       "; ispfem is quasi-static by default: run sph or espfem, or set "
+                       "spfem.implicit.dynamics = \"newmark\" for inertia");
     }
   }
   IspfemSetup setup = make_setup<IspfemSetup>(scene);

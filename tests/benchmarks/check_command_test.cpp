@@ -80,6 +80,25 @@ TEST(CheckCommand, RefusesWhatRunRefusesWithTheSameMessage) {
   }
 }
 
+TEST(CheckCommand, AQuasiStaticMethodRefusesACollapseAsRunDoes) {
+  // The column's free vertical face in cohesionless sand has no static equilibrium (issue 44)
+  const std::string collapse = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
+  const Result check = duet("check '" + collapse + "' --method ispfem");
+  const Result run =
+      duet("run '" + collapse + "' --method ispfem --out /nonexistent/never-written");
+  EXPECT_EQ(check.status, 2) << check.output;
+  EXPECT_EQ(run.status, 2) << run.output;
+  const std::string message = check.output.substr(0, check.output.find('\n'));
+  EXPECT_NE(message.find("no static equilibrium"), std::string::npos) << message;
+  EXPECT_NE(run.output.find(message), std::string::npos) << run.output;
+  // Asked of every method, the scene is valid: the others' estimates, ispfem's refusal
+  const Result all = duet("check '" + collapse + "'");
+  EXPECT_EQ(all.status, 0) << all.output;
+  EXPECT_NE(all.output.find("ispfem: refused (duet run exits 2): body.column"), std::string::npos)
+      << all.output;
+  EXPECT_NE(all.output.find("espfem: time step"), std::string::npos) << all.output;
+}
+
 TEST(CheckCommand, AModulusInMegapascalsIsTakenWithForceAndSaidAsAWarning) {
   const std::string path = kBadScenes + "modulus-in-megapascals.toml";
   const Result refused = duet("check '" + path + "'");

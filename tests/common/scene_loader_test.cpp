@@ -16,6 +16,7 @@
 #include "benchmarks/scene_input.hpp"
 #include "common/enum_names.hpp"
 #include "common/input_error.hpp"
+#include "common/standing_faces.hpp"
 #include "constitutive/registry.hpp"
 #include "tests/common/column_scene.hpp"
 
@@ -391,6 +392,62 @@ TEST(SceneValidation, AModulusOrStrengthInTheWrongUnitLoadsWithForce) {
   EXPECT_EQ(file_refusal(bad_scene("strength-in-kilopascals.toml"), {}, /*force=*/true), "");
   // 10 kPa is the least modulus taken without it
   EXPECT_EQ(file_refusal(bad_scene("modulus-in-megapascals.toml"), {"material.sand.E=1e4"}), "");
+}
+
+/// A 0.2 m x 0.1 m body on a floor, of `material` (a TOML table body), with `extra` tables.
+std::string standing_scene(const std::string& material, const std::string& body,
+                           const std::string& extra = "") {
+  return "name = \"standing\"\nspacing = 0.01\ngravity = [0.0, -9.81]\n[time]\nend_time = 0.5\n"
+         "[material.soil]\ndensity = 1800.0\n" +
+         material + "\n[body.column]\nmaterial = \"soil\"\n" + body +
+         "\n[wall.floor]\npoints = [[-0.1, 0.0], [0.6, 0.0]]\n" + extra;
+}
+
+const std::string kSand =
+    "model = \"drucker-prager\"\nE = 1e7\nnu = 0.3\nphi = 30.0\npsi = 0.0\nc = 0.0";
+const std::string kBlock = "min = [0.0, 0.0]\nmax = [0.2, 0.1]";
+
+std::string steep_face(const std::string& text) {
+  return face_steeper_than_friction(load_scene_checked_from_string(text, "scene.toml"));
+}
+
+TEST(StandingFaces, AVerticalFreeFaceOfCohesionlessSandCannotStand) {
+  const std::string why = steep_face(standing_scene(kSand, kBlock));
+  EXPECT_NE(why.find("body.column"), std::string::npos) << why;
+  EXPECT_NE(why.find("free face at 90 deg"), std::string::npos) << why;
+  EXPECT_NE(why.find("phi = 30 deg"), std::string::npos) << why;
+}
+
+TEST(StandingFaces, AFaceHeldByAWallOrACohesionOrWithoutGravityStands) {
+  const std::string walls =
+      "[wall.left]\npoints = [[0.0, 0.0], [0.0, 0.2]]\n"
+      "[wall.right]\npoints = [[0.2, 0.0], [0.2, 0.2]]\n";
+  EXPECT_EQ(steep_face(standing_scene(kSand, kBlock, walls)), "");
+  std::string cohesive = kSand;
+  cohesive.replace(cohesive.find("c = 0.0"), 7, "c = 5000.0");
+  EXPECT_EQ(steep_face(standing_scene(cohesive, kBlock)), "");
+  std::string weightless = standing_scene(kSand, kBlock);
+  weightless.replace(weightless.find("gravity = [0.0, -9.81]"), 22, "gravity = [0.0, 0.0]");
+  EXPECT_EQ(steep_face(weightless), "");
+}
+
+TEST(StandingFaces, ASlopeStandsUpToItsFrictionAngle) {
+  // A wedge against a wall on the left, its free slope at atan(0.1 / 0.2) = 26.6 deg, then at
+  // atan(0.1 / 0.1) = 45 deg: stands in phi 30, not beyond
+  const std::string wall = "[wall.left]\npoints = [[0.0, 0.0], [0.0, 0.2]]\n";
+  const std::string gentle = "shape = \"polygon\"\nvertices = [[0.0, 0.0], [0.2, 0.0], [0.0, 0.1]]";
+  const std::string steep = "shape = \"polygon\"\nvertices = [[0.0, 0.0], [0.1, 0.0], [0.0, 0.1]]";
+  EXPECT_EQ(steep_face(standing_scene(kSand, gentle, wall)), "");
+  const std::string why = steep_face(standing_scene(kSand, steep, wall));
+  EXPECT_NE(why.find("free face at 45 deg"), std::string::npos) << why;
+}
+
+TEST(StandingFaces, AHypoplasticSandGivenByItsConstantsCannotStandVertical) {
+  const std::string sand =
+      "model = \"hypoplastic\"\nc1 = -55.6\nc2 = -171.2\nc3 = -540.9\n"
+      "c4 = -170.9";
+  const std::string why = steep_face(standing_scene(sand, kBlock));
+  EXPECT_NE(why.find("phi below 90 deg"), std::string::npos) << why;
 }
 
 }  // namespace
