@@ -45,22 +45,31 @@ std::string with_commas(double value) {
   return digits;
 }
 
-/// The largest P-wave speed sqrt((K + 4G/3) / rho) over the particles in their initial state
-/// (the models' moduli at the initial stress), or 0 when the scene is too large to sample here.
-double largest_wave_speed(const Scene& scene) {
-  if (estimated_particles(scene) > 2.0e6) return 0.0;
+/// The fastest wave over the particles in their initial state: sqrt(M / rho), M the models'
+/// tangent bound at the initial stress (constitutive::block_modulus: the P-wave modulus K + 4G/3
+/// of elasticity, the hypoplastic L + N); `stiffening` where a model's bound grows with the stress
+/// (espfem's stress-increment limit then shortens steps near zero stress). A scene too large to
+/// sample here gives 0.
+struct InitialWaves {
+  double speed = 0.0;
+  bool stiffening = false;
+};
+
+InitialWaves initial_waves(const Scene& scene) {
+  InitialWaves w;
+  if (estimated_particles(scene) > 2.0e6) return w;
   Particles particles = sample_bodies(scene);
   initialise_material_points(scene, particles);
   const auto models = build_models(scene);
-  double c = 0.0;
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const auto& model = *models[static_cast<std::size_t>(particles.material[i])];
     const constitutive::ElasticModuli e = model.moduli(
         particles.stress[i],
         std::span<const double>(particles.internal.of(i), model.internal_variables().size()));
-    c = std::max(c, std::sqrt(std::max(e.bulk + 4.0 * e.shear / 3.0, 0.0) / particles.density[i]));
+    w.speed = std::max(w.speed, std::sqrt(constitutive::block_modulus(e) / particles.density[i]));
+    w.stiffening = w.stiffening || e.tangent_bound > 0.0;
   }
-  return c;
+  return w;
 }
 
 void print_scene(const Scene& scene, std::ostream& out) {
@@ -130,8 +139,9 @@ std::string sph_sound_speed_note(const Scene& scene, double wave_speed) {
 }
 
 /// One line per method: its step and steps (or increments) and memory.
-void print_method(const Scene& scene, const MethodInfo& method, double wave_speed,
+void print_method(const Scene& scene, const MethodInfo& method, const InitialWaves& waves,
                   std::ostream& out) {
+  const double wave_speed = waves.speed;
   const RunEstimate e = estimate_run(scene, method);
   std::ostringstream line;
   line << "  " << method.name << ": ";
@@ -144,12 +154,24 @@ void print_method(const Scene& scene, const MethodInfo& method, double wave_spee
          << with_commas(std::ceil(scene.time.end_time / dt)) << " steps; "
          << sph_sound_speed_note(scene, wave_speed);
   } else if (method.name == "espfem" && wave_speed > 0.0) {
-    // spfem/explicit_solver.cpp: dt = safety x cell size / P-wave speed (cell size about dp).
-    const double dt = scene.spfem.time_step_safety * scene.spacing / wave_speed;
+    // spfem/explicit_solver.cpp: dt = safety x cell size / P-wave speed (cell size about dp),
+    // times sqrt(1 + b1^2) - b1 with the linear bulk viscosity b1 (its stability limit)
+    const double b1 = scene.spfem.bulk_viscosity;
+    const double viscous = b1 > 0.0 ? std::sqrt(1.0 + b1 * b1) - b1 : 1.0;
+    const double dt = viscous * scene.spfem.time_step_safety * scene.spacing / wave_speed;
     line << "time step about " << about(dt) << " s (safety "
          << format_number(scene.spfem.time_step_safety) << " x dp / P-wave speed "
-         << about(wave_speed) << " m/s), about " << with_commas(std::ceil(scene.time.end_time / dt))
-         << " steps (slivers of the mesh shorten it)";
+         << about(wave_speed) << " m/s";
+    if (b1 > 0.0) line << " x " << about(viscous) << " for bulk_viscosity " << format_number(b1);
+    line << "), about " << with_commas(std::ceil(scene.time.end_time / dt)) << " steps";
+    if (waves.stiffening && scene.spfem.stress_increment_limit > 0.0) {
+      // The limit follows the strain rates of the run: no estimate before it
+      line << " at least: spfem.stress_increment_limit shortens the steps where the soil, whose "
+              "stiffness grows with its stress, is near zero stress, by how much only the run "
+              "knows (metrics.json: stress_limited_steps)";
+    } else {
+      line << " (slivers of the mesh shorten it)";
+    }
   } else if (method.name == "espfem") {
     line << "time step not estimated (too many particles to sample the wave speed here)";
   } else if (method.name == "ispfem") {
@@ -203,12 +225,12 @@ void add_check_command(CLI::App& app, int& exit_code) {
       }
     }
     print_scene(scene, std::cout);
-    const double wave_speed = largest_wave_speed(scene);
+    const InitialWaves waves = initial_waves(scene);
     for (const MethodInfo* m : methods) {
       if (refusals.count(m) != 0) {
         std::cout << "  " << m->name << ": refused (duet run exits 2): " << refusals[m] << '\n';
       } else {
-        print_method(scene, *m, wave_speed, std::cout);
+        print_method(scene, *m, waves, std::cout);
       }
     }
     exit_code = 0;

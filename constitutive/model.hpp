@@ -8,6 +8,7 @@
 // D = sym(L), spin W = skew(L). Rotation is handled once, in objective.hpp (Jaumann rate, Peng 2015
 // eq 13), so a model integrates only the co-rotational (objective) part.
 
+#include <cmath>
 #include <span>
 #include <string>
 #include <string_view>
@@ -32,6 +33,15 @@ struct ElasticModuli {
   // in-plane strain rate D = sym(v (x) b). 0 = use |lambda| + 2G (exact for isotropic elasticity).
   double tangent_bound = 0.0;
 };
+
+/// M, the bound on the in-plane tangent acting between two gradients: the model's own
+/// tangent_bound where it gives one (hypoplastic: L + N), else |lambda| + 2 G with
+/// lambda = K - 2 G / 3 (= K + 4 G / 3 for lambda >= 0). sqrt(M / rho) is the fastest wave the
+/// explicit SPFEM step follows (its time step and stiffness stabilisation; duet check's estimate).
+inline double block_modulus(const ElasticModuli& e) {
+  if (e.tangent_bound > 0.0) return e.tangent_bound;
+  return std::abs(e.bulk - 2.0 * e.shear / 3.0) + 2.0 * std::abs(e.shear);
+}
 
 class Model {
  public:

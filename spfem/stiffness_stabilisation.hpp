@@ -36,14 +36,9 @@
 
 namespace duet::spfem {
 
-/// M, the bound on the in-plane tangent acting between two gradients: the model's own
-/// tangent_bound where it gives one (hypoplastic: L + N), else |lambda| + 2 G with
-/// lambda = K - 2 G / 3 (= K + 4 G / 3 for lambda >= 0). The explicit solver's time step
-/// (ExplicitSolver::time_step) and both solvers' stiffness stabilisation (M_e) read it.
-inline double block_modulus(const constitutive::ElasticModuli& e) {
-  if (e.tangent_bound > 0.0) return e.tangent_bound;
-  return std::abs(e.bulk - 2.0 * e.shear / 3.0) + 2.0 * std::abs(e.shear);
-}
+/// M (constitutive::block_modulus): the explicit solver's time step (ExplicitSolver::time_step)
+/// and both solvers' stiffness stabilisation (M_e) read it.
+using constitutive::block_modulus;
 
 /// Per-triangle and per-node terms, kept between calls so their storage is reused.
 struct StiffnessStabilisationScratch {

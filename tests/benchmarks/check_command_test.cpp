@@ -30,6 +30,24 @@ TEST(CheckCommand, PrintsParticlesAndEachMethodsStepsWithoutRunning) {
       << r.output;
 }
 
+TEST(CheckCommand, EspfemsStepCountsTheBulkViscosityAndSaysWhenOnlyTheRunCanKnow) {
+  // cavity.toml: b1 = 1 scales the step by sqrt(1 + b1^2) - b1 = 0.414 (Abaqus' stability limit
+  // with bulk viscosity, as ExplicitSolver::time_step): 10 s / (0.414 x 0.5 x 0.35 m / 176 m/s)
+  const std::string cavity = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/cavity.toml";
+  const Result viscous = duet("check '" + cavity + "' --method espfem");
+  ASSERT_EQ(viscous.status, 0) << viscous.output;
+  EXPECT_NE(viscous.output.find("x 0.414 for bulk_viscosity 1), about 24,334 steps"),
+            std::string::npos)
+      << viscous.output;
+  // The hypoplastic collapse: the stress-increment limit makes the count a lower bound
+  const std::string collapse = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
+  const Result stiffening = duet("check '" + collapse + "' --method espfem");
+  ASSERT_EQ(stiffening.status, 0) << stiffening.output;
+  EXPECT_NE(stiffening.output.find("steps at least: spfem.stress_increment_limit"),
+            std::string::npos)
+      << stiffening.output;
+}
+
 TEST(CheckCommand, RefusesWhatWouldNotFitUnlessForced) {
   const Result r = duet("check '" + kFooting + "' --method sph --spacing 0.0005");
   EXPECT_EQ(r.status, 2) << r.output;
