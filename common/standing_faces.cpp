@@ -76,8 +76,8 @@ std::string face_steeper_than_friction(const Scene& scene) {
       why.precision(4);
       why << "body." << b.name << ": its side (" << a.x() << ", " << a.y() << ") - (" << c.x()
           << ", " << c.y() << ") is a free face at " << angle << " deg to the horizontal in "
-          << m.model << " soil '" << m.name << "' with phi "
-          << (*phi > 89.99 ? "below " : "= ") << (*phi > 89.99 ? 90.0 : *phi)
+          << m.model << " soil '" << m.name << "' with phi " << (*phi > 89.99 ? "below " : "= ")
+          << (*phi > 89.99 ? 90.0 : *phi)
           << " deg and no cohesion: no dry slope stands steeper than phi, so there is no static "
              "equilibrium for a quasi-static method to find (the collapse is dynamic)";
       return why.str();
