@@ -19,6 +19,7 @@
 namespace duet::sph {
 
 using detail::artificial_stress_term;
+using detail::ForcePair;
 using detail::kParallelMin;
 using detail::mirror;
 using detail::PairSum;
@@ -173,202 +174,143 @@ void SphSolver::use_models(std::vector<std::unique_ptr<constitutive::Model>> mod
   constitutive::replace_models(setup_.models, std::move(models), "sph");
 }
 
-void SphSolver::pair_loop(const Particles& particles) {
-  const duet::SphOptions& o = setup_.options;
-  const std::size_t n = particles.size();
-  const std::size_t n_walls = setup_.walls.size();
-  const double h = h_;
-  const double support2 = kernel_.support_radius() * kernel_.support_radius();
-  const double alpha_cs = o.alpha * o.sound_speed;
-  const double beta = o.beta;
-  const double eps_h2 = 0.01 * h * h;
-  const double tiny = std::numeric_limits<double>::min();
-  const double b = o.artificial_stress;
-  const double dummy_volume = setup_.spacing * setup_.spacing;
-  const bool sigma_max = o.wall_stress == SphWallStress::sigma_max;
-  const bool extrapolated = o.dummy_velocity == SphDummyVelocity::extrapolated;
+/// What every row of the force pass reads, resolved once per step.
+struct SphSolver::ForcePass {
+  detail::ForcePairTerms terms;  // the per-pair terms, eqs 26-30
+  std::size_t n;                 // soil particles
+  std::size_t n_walls;
+  double b;             // artificial stress coefficient, eq 29 (0 = off)
+  double dummy_volume;  // dp^2
+  Vec2 gravity;
+  bool sigma_max;     // dummies carry eq 31's stress, else that of the soil particle (Bui 2008)
+  bool extrapolated;  // dummies move with Morris 1997 / Bui 2008's velocity, else the wall's
   // The leapfrog takes eq 21's velocity gradient and eq 24's density rate from its second pass
   // (velocity_gradient_pass.cpp, at the new positions and velocities), which overwrites them
-  // before anything reads them: here only Verlet needs them.
-  const bool rates = o.integrator != SphIntegrator::leapfrog;
-  const Vec2 g = setup_.gravity;
-  const PairData* work = work_.data();
-  const SymR* work_r = work_r_.data();
-  const std::int32_t* work_wall = work_wall_.data();
-  const bool parallel = n >= kParallelMin;
+  // before anything reads them: only Verlet needs them here.
+  bool rates;
+  bool parallel;
   // The kernel gradient factors of the leapfrog's velocity pass, when it ran at these very
-  // positions with this neighbour list (gradient_cached_); the artificial stress needs W_ij and
-  // r as well, so with b > 0 everything is computed here.
-  const double* cached_factor = gradient_cached_ && b == 0.0 ? gradient_factor_.data() : nullptr;
-  const std::size_t stride = neighbours_.stride();
+  // positions with this neighbour list (gradient_cached_), row k at k * stride; else null. The
+  // artificial stress needs W_ij and r as well, so with b > 0 everything is computed here.
+  const double* cached_factor;
+  std::size_t stride;
+};
+
+void SphSolver::pair_loop(const Particles& particles) {
+  const duet::SphOptions& o = setup_.options;
+  const double b = o.artificial_stress;
+  const ForcePass pass{
+      .terms = detail::ForcePairTerms(kernel_, o, h_, w_dp_, exponent_n_),
+      .n = particles.size(),
+      .n_walls = setup_.walls.size(),
+      .b = b,
+      .dummy_volume = setup_.spacing * setup_.spacing,
+      .gravity = setup_.gravity,
+      .sigma_max = o.wall_stress == SphWallStress::sigma_max,
+      .extrapolated = o.dummy_velocity == SphDummyVelocity::extrapolated,
+      .rates = o.integrator != SphIntegrator::leapfrog,
+      .parallel = particles.size() >= kParallelMin,
+      .cached_factor = gradient_cached_ && b == 0.0 ? gradient_factor_.data() : nullptr,
+      .stride = neighbours_.stride(),
+  };
   std::fill(wall_force_scratch_.begin(), wall_force_scratch_.end(), Vec2::Zero());
-  double a_max2 = 0.0;
+  const int team = soil_pair_pass(pass);
+  const double a_max2 = particle_pass(pass, static_cast<std::size_t>(team));
+  // Each wall's force: the threads' slots summed in thread order.
+  for (std::size_t w = 0; w < pass.n_walls; ++w) {
+    Vec2 f = Vec2::Zero();
+    for (std::size_t t = 0; t * pass.n_walls < wall_force_scratch_.size(); ++t) {
+      f += wall_force_scratch_[t * pass.n_walls + w];
+    }
+    wall_force_[w] = f;
+  }
+  if (!std::isfinite(a_max2)) {
+    for (std::size_t i = 0; i < pass.n; ++i) {
+      if (!acceleration_[i].allFinite()) {
+        throw NumericalFailure("non-finite acceleration", static_cast<long>(i));
+      }
+    }
+  }
+  acceleration_max_ = std::sqrt(a_max2);
+}
+
+int SphSolver::soil_pair_pass(const ForcePass& pass) {
+  const std::size_t n = pass.n;
   int team = 1;
-
-  // The terms of one pair (i, j) that both ends share: grad_i W_ij (g), v_i - v_j (v), and the
-  // bracket of eq 30, sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij (c). False when j lies
-  // in the skin, beyond 2h. `cached` points at the pair's gradient factor from the velocity pass,
-  // or is null.
-  struct Pair {
-    double gx, gy, vx, vy, cxx, cyy, cxy;
-  };
-  const auto pair_terms = [&](const PairData& pi, const PairData& pj, double rho_j, double txx,
-                              double tyy, double txy, const SymR& r_i, const SymR& r_j,
-                              const double* cached, Pair& p) {
-    const double dx = pi.x - pj.x, dy = pi.y - pj.y;
-    const double r2 = dx * dx + dy * dy;
-    if (r2 >= support2) return false;
-    double r = 0.0;  // only the artificial stress needs it, and then nothing is cached
-    double f;
-    if (cached != nullptr) {
-      f = *cached;  // the same arithmetic on the same positions, done in the velocity pass
-    } else {
-      r = std::sqrt(r2);
-      f = kernel_.gradient_factor(r, 1.0 / std::max(r, tiny));
-    }
-    p.gx = f * dx;  // grad_i W_ij
-    p.gy = f * dy;
-    p.vx = pi.vx - pj.vx;
-    p.vy = pi.vy - pj.vy;
-    // Peng 2015 eqs 26-27: artificial viscosity on approaching pairs (vr < 0), evaluated for
-    // every pair and selected without a branch: about half the pairs approach, in no pattern.
-    const double vr = p.vx * dx + p.vy * dy;
-    const double phi = h * vr / (r2 + eps_h2);
-    const double viscosity = (-alpha_cs * phi + beta * phi * phi) * 2.0 / (pi.rho + rho_j);
-    const double pi_ij = select_without_branch(vr < 0.0, viscosity, 0.0);
-    // Peng 2015 eq 30: sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij
-    p.cxx = pi.sxx + txx - pi_ij;
-    p.cyy = pi.syy + tyy - pi_ij;
-    p.cxy = pi.sxy + txy;
-    if (b > 0.0) {
-      // Peng 2015 eq 28: S_ij = f_ij^n (R_i + R_j), f_ij = W_ij / W(dp)
-      const double fn = std::pow(kernel_.value(r) / w_dp_, exponent_n_);
-      p.cxx += fn * (r_i.xx + r_j.xx);
-      p.cyy += fn * (r_i.yy + r_j.yy);
-      p.cxy += fn * (r_i.xy + r_j.xy);
-    }
-    return true;
-  };
-  // What a pair adds to one end i with neighbour mass m_j and volume V_j (the other end's share
-  // has the same form with m_i, V_i and -grad_i W_ij for the force).
-  const auto add = [rates](PairSum& s, const Pair& p, double m_j, double volume_j, double sign) {
-    s.ax += sign * m_j * (p.cxx * p.gx + p.cxy * p.gy);  // eq 30
-    s.ay += sign * m_j * (p.cxy * p.gx + p.cyy * p.gy);
-    if (rates) s.add_rates(p.gx, p.gy, p.vx, p.vy, m_j, volume_j);  // eqs 21 and 24
-  };
-
-  // Pass 1, soil and ghost pairs. Each soil pair sits in one row (NeighbourLists::
-  // drop_lower_pairs) and is evaluated once; its shares go to both ends in the thread's own
-  // buffer (a scatter into thread-private memory: no races, no atomics), summed in pass 2. Ghosts
-  // act on their row's particle only. Peng 2015 eq 31 needs, for the dummies, the smallest normal
-  // stresses among each particle's soil neighbours: gathered the same way.
-#pragma omp parallel if (parallel)
+  // Each soil pair sits in one row (NeighbourLists::drop_lower_pairs) and is evaluated once; its
+  // shares go to both ends in the thread's own buffer (a scatter into thread-private memory: no
+  // races, no atomics), summed in pass 2. Peng 2015 eq 31 needs, for the dummies, the smallest
+  // normal stresses among each particle's soil neighbours: gathered the same way.
+#pragma omp parallel if (pass.parallel)
   {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
 #pragma omp single nowait
     team = omp_get_num_threads();
     PairSum* sum = pair_sum_.data() + t * n;
     std::fill(sum, sum + n, PairSum{});
-    Vec2* wall_force = wall_force_scratch_.data() + t * n_walls;
+    Vec2* wall_force = wall_force_scratch_.data() + t * pass.n_walls;
     // Static chunks: each row's shares land in the same thread's buffer every run, so the sums
     // of pass 2 (over the buffers in thread order) are bitwise reproducible; dynamic scheduling
     // made two-thread runs differ at round-off from run to run.
 #pragma omp for schedule(static, 256)
-    for (std::size_t k = 0; k < n; ++k) {
-      const PairData& pi = work[k];
-      const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
-      PairSum s;
-      Pair p;
-      const auto early = neighbours_.early(k);
-      const double* row_factor = cached_factor != nullptr ? cached_factor + k * stride : nullptr;
-      for (std::size_t e = 0; e < early.size(); ++e) {
-        const std::uint32_t j = early[e];
-        const PairData& pj = work[j];
-        const SymR& r_j = b > 0.0 ? work_r[j] : r_i;
-        const double* cached = row_factor != nullptr ? row_factor + e : nullptr;
-        if (!pair_terms(pi, pj, pj.rho, pj.sxx, pj.syy, pj.sxy, r_i, r_j, cached, p)) continue;
-        add(s, p, pj.m, pj.vol, 1.0);
-        if (j < n) {
-          PairSum& sj = sum[j];
-          add(sj, p, pi.m, pi.vol, -1.0);
-          if (sigma_max) {
-            s.min_xx = std::min(s.min_xx, pj.sxx * pj.rho * pj.rho);
-            s.min_yy = std::min(s.min_yy, pj.syy * pj.rho * pj.rho);
-            sj.min_xx = std::min(sj.min_xx, pi.sxx * pi.rho * pi.rho);
-            sj.min_yy = std::min(sj.min_yy, pi.syy * pi.rho * pi.rho);
-          }
-        } else {
-          // reaction on the free-slip wall of the ghost
-          wall_force[work_wall[j]] -=
-              pi.m * pj.m * Vec2(p.cxx * p.gx + p.cxy * p.gy, p.cxy * p.gx + p.cyy * p.gy);
-        }
+    for (std::size_t k = 0; k < n; ++k) soil_pair_row(k, pass, sum, wall_force);
+  }
+  return team;
+}
+
+void SphSolver::soil_pair_row(std::size_t k, const ForcePass& pass, PairSum* sum,
+                              Vec2* wall_force) const {
+  const PairData* work = work_.data();
+  const PairData& pi = work[k];
+  const bool artificial_stress = pass.b > 0.0;
+  const SymR r_i = artificial_stress ? work_r_[k] : SymR{0.0, 0.0, 0.0};
+  PairSum s;
+  ForcePair p;
+  const auto early = neighbours_.early(k);
+  const double* row_factor =
+      pass.cached_factor != nullptr ? pass.cached_factor + k * pass.stride : nullptr;
+  for (std::size_t e = 0; e < early.size(); ++e) {
+    const std::uint32_t j = early[e];
+    const PairData& pj = work[j];
+    const SymR& r_j = artificial_stress ? work_r_[j] : r_i;
+    const double* cached = row_factor != nullptr ? row_factor + e : nullptr;
+    if (!pass.terms.evaluate(pi, pj, pj.rho, pj.sxx, pj.syy, pj.sxy, r_i, r_j, cached, p)) {
+      continue;
+    }
+    s.add_force(p, pj.m, pj.vol, 1.0, pass.rates);
+    if (j < pass.n) {
+      PairSum& sj = sum[j];
+      sj.add_force(p, pi.m, pi.vol, -1.0, pass.rates);
+      if (pass.sigma_max) {
+        s.take_min_normal_stress(pj);
+        sj.take_min_normal_stress(pi);
       }
-      sum[k] += s;
+    } else {
+      // A ghost acts on i alone; minus its force is the reaction on its free-slip wall.
+      wall_force[work_wall_[j]] -= pi.m * pj.m * p.bracket_times_gradient();
     }
   }
+  sum[k] += s;
+}
 
-  // Pass 2, per soil particle: the threads' shares summed, then the dummy particles (they need
-  // eq 31's minimum over all soil neighbours, complete only now), gravity and the load.
-  const auto n_team = static_cast<std::size_t>(team);
-#pragma omp parallel if (parallel)
+double SphSolver::particle_pass(const ForcePass& pass, std::size_t n_team) {
+  const std::size_t n = pass.n;
+  double a_max2 = 0.0;
+#pragma omp parallel if (pass.parallel)
   {
-    Vec2* wall_force = wall_force_scratch_.data() + omp_get_thread_num() * n_walls;
+    Vec2* wall_force = wall_force_scratch_.data() + omp_get_thread_num() * pass.n_walls;
 #pragma omp for schedule(static, 256) reduction(max : a_max2) nowait  // wall_force: as pass 1
     for (std::size_t k = 0; k < n; ++k) {
-      const PairData& pi = work[k];
-      const std::size_t i = order_[k];
-      const double rho_i = pi.rho;
+      // The threads' shares in thread order, then the dummies: they need eq 31's minimum over
+      // all soil neighbours, complete only now.
       PairSum s = pair_sum_[k];
       for (std::size_t t = 1; t < n_team; ++t) s += pair_sum_[t * n + k];
-      const auto late = neighbours_.late(k);
-      if (!late.empty()) {
-        // Dummy particles: density of i, volume dp^2 of its lattice, and stress sigma_max
-        // (Peng 2015 eq 31: diagonal = the smallest normal stresses among i and its soil
-        // neighbours, off-diagonal = that of i) or, with Bui 2008, the stress of i; velocity
-        // the wall's or, with sph.dummy_velocity = "extrapolated", Morris 1997 / Bui 2008's.
-        const double inv_rho2 = 1.0 / (rho_i * rho_i);
-        const double min_xx = std::min(s.min_xx, pi.sxx * rho_i * rho_i);
-        const double min_yy = std::min(s.min_yy, pi.syy * rho_i * rho_i);
-        const double dxx = sigma_max ? min_xx * inv_rho2 : pi.sxx;
-        const double dyy = sigma_max ? min_yy * inv_rho2 : pi.syy;
-        const SymR r_i = b > 0.0 ? work_r[k] : SymR{0.0, 0.0, 0.0};
-        SymR r_dummy{0.0, 0.0, 0.0};
-        if (b > 0.0) {
-          Mat2 s_dummy;
-          s_dummy << dxx * rho_i * rho_i, pi.sxy * rho_i * rho_i, pi.sxy * rho_i * rho_i,
-              dyy * rho_i * rho_i;
-          const Mat2 r = artificial_stress_term(s_dummy, rho_i, b);
-          r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
-        }
-        const double m_dummy = rho_i * dummy_volume;
-        // The late part of row k follows its early part in the cache, as in the row.
-        const double* late_factor = cached_factor != nullptr
-                                        ? cached_factor + k * stride + neighbours_.early(k).size()
-                                        : nullptr;
-        const auto dummy = [&](const PairData& pj, std::int32_t wall, std::size_t e) {
-          Pair p;
-          const double* cached = late_factor != nullptr ? late_factor + e : nullptr;
-          if (!pair_terms(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, cached, p)) return;
-          add(s, p, m_dummy, dummy_volume, 1.0);
-          // reaction on the wall of the dummy
-          wall_force[wall] -=
-              pi.m * m_dummy * Vec2(p.cxx * p.gx + p.cxy * p.gy, p.cxy * p.gx + p.cyy * p.gy);
-        };
-        if (!extrapolated) {
-          for (std::size_t e = 0; e < late.size(); ++e) dummy(work[late[e]], work_wall[late[e]], e);
-        } else {
-          WallLine line;  // pi's nearest segment of the dummy's wall
-          for (std::size_t e = 0; e < late.size(); ++e) {
-            const std::uint32_t j = late[e];
-            PairData pj = work[j];
-            extrapolate_dummy_velocity(pi, work_wall[j], line, pj);
-            dummy(pj, work_wall[j], e);
-          }
-        }
-      }
-      const Vec2 a = Vec2(s.ax, s.ay) + g + external_force_[i] / pi.m;  // eq 30: + g
+      if (!neighbours_.late(k).empty()) dummy_pairs(k, pass, s, wall_force);
+      const std::size_t i = order_[k];
+      // Peng 2015 eq 30: + g, and the scene's load
+      const Vec2 a = Vec2(s.ax, s.ay) + pass.gravity + external_force_[i] / work_[k].m;
       acceleration_[i] = a;
-      if (rates) {
+      if (pass.rates) {
         Mat2 l;
         l << s.lxx, s.lxy, s.lyx, s.lyy;
         velocity_gradient_[i] = l;
@@ -378,21 +320,57 @@ void SphSolver::pair_loop(const Particles& particles) {
       a_max2 = std::max(a_max2, std::isfinite(a2) ? a2 : std::numeric_limits<double>::infinity());
     }
   }
-  for (std::size_t w = 0; w < n_walls; ++w) {
-    Vec2 f = Vec2::Zero();
-    for (std::size_t t = 0; t * n_walls < wall_force_scratch_.size(); ++t) {
-      f += wall_force_scratch_[t * n_walls + w];
-    }
-    wall_force_[w] = f;
+  return a_max2;
+}
+
+void SphSolver::dummy_pairs(std::size_t k, const ForcePass& pass, PairSum& s,
+                            Vec2* wall_force) const {
+  // Dummy particles: density of i, volume dp^2 of its lattice, and stress sigma_max (Peng 2015
+  // eq 31: diagonal = the smallest normal stresses among i and its soil neighbours, off-diagonal
+  // = that of i) or, with Bui 2008, the stress of i; velocity the wall's or, with
+  // sph.dummy_velocity = "extrapolated", Morris 1997 / Bui 2008's.
+  const PairData& pi = work_[k];
+  const double rho_i = pi.rho;
+  const double inv_rho2 = 1.0 / (rho_i * rho_i);
+  const double min_xx = std::min(s.min_xx, pi.sxx * rho_i * rho_i);
+  const double min_yy = std::min(s.min_yy, pi.syy * rho_i * rho_i);
+  const double dxx = pass.sigma_max ? min_xx * inv_rho2 : pi.sxx;  // stress / rho^2
+  const double dyy = pass.sigma_max ? min_yy * inv_rho2 : pi.syy;
+  const SymR r_i = pass.b > 0.0 ? work_r_[k] : SymR{0.0, 0.0, 0.0};
+  SymR r_dummy{0.0, 0.0, 0.0};
+  if (pass.b > 0.0) {
+    // Peng 2015 eq 29 of the dummy's stress
+    Mat2 s_dummy;
+    s_dummy << dxx * rho_i * rho_i, pi.sxy * rho_i * rho_i, pi.sxy * rho_i * rho_i,
+        dyy * rho_i * rho_i;
+    const Mat2 r = artificial_stress_term(s_dummy, rho_i, pass.b);
+    r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
   }
-  if (!std::isfinite(a_max2)) {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!acceleration_[i].allFinite()) {
-        throw NumericalFailure("non-finite acceleration", static_cast<long>(i));
-      }
+  const double m_dummy = rho_i * pass.dummy_volume;
+  // The late part of row k follows its early part in the cache, as in the row.
+  const double* late_factor = pass.cached_factor != nullptr ? pass.cached_factor + k * pass.stride +
+                                                                  neighbours_.early(k).size()
+                                                            : nullptr;
+  const auto dummy = [&](const PairData& pj, std::int32_t wall, std::size_t e) {
+    ForcePair p;
+    const double* cached = late_factor != nullptr ? late_factor + e : nullptr;
+    if (!pass.terms.evaluate(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, cached, p)) return;
+    s.add_force(p, m_dummy, pass.dummy_volume, 1.0, pass.rates);
+    // minus the dummy's force on i is the reaction on its wall
+    wall_force[wall] -= pi.m * m_dummy * p.bracket_times_gradient();
+  };
+  const auto late = neighbours_.late(k);
+  if (!pass.extrapolated) {
+    for (std::size_t e = 0; e < late.size(); ++e) dummy(work_[late[e]], work_wall_[late[e]], e);
+  } else {
+    WallLine line;  // pi's nearest segment of the dummy's wall
+    for (std::size_t e = 0; e < late.size(); ++e) {
+      const std::uint32_t j = late[e];
+      PairData pj = work_[j];
+      extrapolate_dummy_velocity(pi, work_wall_[j], line, pj);
+      dummy(pj, work_wall_[j], e);
     }
   }
-  acceleration_max_ = std::sqrt(a_max2);
 }
 
 void SphSolver::extrapolate_dummy_velocity(const PairData& pi, int wall, WallLine& line,

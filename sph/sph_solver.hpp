@@ -104,17 +104,10 @@ class SphSolver {
   void restart_point() { rebuild_ = true; }
 
  private:
-  /// What the pair loop reads of particle j, in working order (soil sorted by cell, then ghost
-  /// candidates, then dummies), packed so that one neighbour is one or two cache lines:
-  /// position, velocity, mass, density, volume m / rho and the in-plane stress / rho^2
-  /// (symmetric).
-  struct PairData {
-    double x, y, vx, vy, m, rho, vol, sxx, syy, sxy;
-  };
-  /// Peng 2015 eq 29 artificial stress R (symmetric), in working order; only with b > 0.
-  struct SymR {
-    double xx, yy, xy;
-  };
+  using PairData = detail::PairData;  // the pair loops' packed copy of a particle
+  using SymR = detail::SymR;          // Peng 2015 eq 29 artificial stress R
+  /// The force pass's constants for one step (sph_solver.cpp).
+  struct ForcePass;
 
   void update_walls(double time, double dt);
   void select_ghosts(const Particles& particles);
@@ -122,7 +115,21 @@ class SphSolver {
   /// displacement of a working entry or wall point since the last neighbour build.
   double gather(const Particles& particles);
   void rebuild_neighbours(const Particles& particles);
+  /// The force pass (README, step 3): eq 30's acceleration of every soil particle, with Verlet
+  /// eq 21's velocity gradient and eq 24's density rate, and the walls' forces.
   void pair_loop(const Particles& particles);
+  /// Pass 1: each soil pair once, both ends' shares scattered into the thread's own buffer,
+  /// ghosts on their row's particle; returns the number of threads that ran it.
+  int soil_pair_pass(const ForcePass& pass);
+  /// Pass 1's row k (working order) into the thread's buffers `sum` and `wall_force`.
+  void soil_pair_row(std::size_t k, const ForcePass& pass, detail::PairSum* sum,
+                     Vec2* wall_force) const;
+  /// Pass 2: each soil particle's shares of the n_team threads summed, its dummies added, the
+  /// results written to its driver index; returns the largest squared acceleration.
+  double particle_pass(const ForcePass& pass, std::size_t n_team);
+  /// The dummy particles of row k added to its sums `s`, their reactions to `wall_force`.
+  void dummy_pairs(std::size_t k, const ForcePass& pass, detail::PairSum& s,
+                   Vec2* wall_force) const;
   double time_step() const;
   /// sph.dummy_velocity = "extrapolated": replaces the velocity of dummy pj (of wall `wall`) seen
   /// from soil particle pi by Morris 1997 / Bui 2008's (sph/dummy_velocity.hpp); `line` caches
