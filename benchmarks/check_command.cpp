@@ -17,6 +17,7 @@
 #include "common/input_error.hpp"
 #include "common/lattice.hpp"
 #include "constitutive/model.hpp"
+#include "spfem/explicit_solver.hpp"
 
 namespace duet {
 
@@ -155,9 +156,9 @@ void print_method(const Scene& scene, const MethodInfo& method, const InitialWav
          << sph_sound_speed_note(scene, wave_speed);
   } else if (method.name == "espfem" && wave_speed > 0.0) {
     // spfem/explicit_solver.cpp: dt = safety x cell size / P-wave speed (cell size about dp),
-    // times sqrt(1 + b1^2) - b1 with the linear bulk viscosity b1 (its stability limit)
+    // times the linear bulk viscosity's factor
     const double b1 = scene.spfem.bulk_viscosity;
-    const double viscous = b1 > 0.0 ? std::sqrt(1.0 + b1 * b1) - b1 : 1.0;
+    const double viscous = spfem::bulk_viscosity_step_factor(b1);
     const double dt = viscous * scene.spfem.time_step_safety * scene.spacing / wave_speed;
     line << "time step about " << about(dt) << " s (safety "
          << format_number(scene.spfem.time_step_safety) << " x dp / P-wave speed "

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/suggest.hpp"
+
 namespace duet {
 
 std::string csv_field(const std::string& text) {
@@ -54,27 +56,6 @@ std::string lookup(const Map& map, const std::string& key) {
   return it == map.end() ? std::string() : format_number(it->second);
 }
 
-/// The signed error of the scored measure with the largest error (NaN when none is scored or its
-/// run recorded no sign): over (+) or under (-) the reference.
-double worst_signed_error(const RunSummary& run) {
-  double worst = -1.0;
-  double signed_error = std::nan("");
-  for (const auto& [name, a] : run.accuracy) {
-    if (a.rel_error > worst) {
-      worst = a.rel_error;
-      signed_error = a.signed_error;
-    }
-  }
-  return signed_error;
-}
-
-/// The warnings in one CSV field, one line of the file: separated by " | " (no warning holds one).
-std::string joined(const std::vector<std::string>& lines) {
-  std::string out;
-  for (const std::string& line : lines) out += (out.empty() ? "" : " | ") + line;
-  return out;
-}
-
 }  // namespace
 
 void write_compare_csv(const std::string& path, const std::vector<RunSummary>& runs) {
@@ -106,8 +87,10 @@ void write_compare_csv(const std::string& path, const std::vector<RunSummary>& r
       }
     }
     for (const auto& t : c.timing) file << ',' << lookup(r.timing, t);
-    file << ',' << format_number(worst_signed_error(r)) << ',' << r.warnings.size() << ','
-         << csv_field(joined(r.warnings)) << '\n';
+    // The worst measure's sign, and the warnings in one field of one line (" | " between them)
+    const Accuracy* worst = r.worst_accuracy();
+    file << ',' << format_number(worst ? worst->signed_error : std::nan("")) << ','
+         << r.warnings.size() << ',' << csv_field(join(r.warnings, " | ")) << '\n';
   }
 }
 
@@ -170,7 +153,8 @@ std::string compare_markdown(const std::vector<RunSummary>& runs, double target,
   // What each run doubts about its own result, under the table it qualifies
   bool any_warned = false;
   for (const auto& r : runs) {
-    for (const std::string& w : list_warnings ? r.warnings : std::vector<std::string>{}) {
+    if (!list_warnings) break;
+    for (const std::string& w : r.warnings) {
       if (!any_warned) md << "\nWarnings (metrics.json's `warnings`):\n\n";
       any_warned = true;
       md << "- " << r.method << " at spacing " << format_number(r.spacing) << " m: " << w << '\n';

@@ -5,12 +5,19 @@
 
 namespace duet {
 
-double RunSummary::max_rel_error() const {
-  double worst = std::numeric_limits<double>::quiet_NaN();
+const Accuracy* RunSummary::worst_accuracy() const {
+  const Accuracy* worst = nullptr;
   for (const auto& [name, a] : accuracy) {
-    if (std::isnan(worst) || a.rel_error > worst) worst = a.rel_error;
+    if (worst == nullptr || std::isnan(worst->rel_error) || a.rel_error > worst->rel_error) {
+      worst = &a;
+    }
   }
   return worst;
+}
+
+double RunSummary::max_rel_error() const {
+  const Accuracy* worst = worst_accuracy();
+  return worst ? worst->rel_error : std::numeric_limits<double>::quiet_NaN();
 }
 
 namespace {

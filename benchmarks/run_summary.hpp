@@ -40,7 +40,9 @@ struct RunSummary {
   std::string out_dir;
 
   bool completed() const { return status == "completed"; }
-  /// Largest relative error over the scored measures (NaN when none is scored).
+  /// The scored measure with the largest relative error (the first of equals), or none.
+  const Accuracy* worst_accuracy() const;
+  /// Its relative error (NaN when none is scored).
   double max_rel_error() const;
 };
 

@@ -68,10 +68,7 @@ DeepestPoint deepest_point_inside(std::span<const Vec2> polyline, std::span<cons
                                   double step) {
   Vec2 lo, hi;
   bounding_box(polygon, lo, hi);
-  double length = 0.0;
-  for (std::size_t s = 0; s + 1 < polyline.size(); ++s)
-    length += (polyline[s + 1] - polyline[s]).norm();
-  step = std::max(step, 1e-4 * length);
+  step = std::max(step, 1e-4 * polyline_length(polyline));
   DeepestPoint deepest;
   for (std::size_t s = 0; s + 1 < polyline.size(); ++s) {
     Vec2 a = polyline[s];
@@ -161,15 +158,6 @@ class Checker {
     }
   }
 
-  double distance_to_walls(const Vec2& p) const {
-    double best = std::numeric_limits<double>::infinity();
-    for (const Wall& w : scene_.walls) best = std::min(best, polyline_distance(p, w.points));
-    for (const RigidBody& rb : scene_.rigid_bodies) {
-      best = std::min(best, polygon_boundary_distance(p, rb.outline));
-    }
-    return best;
-  }
-
   /// The mean of the body's lowest vertices along gravity.
   Vec2 lowest_point(const Body& b) const {
     const Vec2 down = scene_.gravity.normalized();
@@ -195,7 +183,7 @@ class Checker {
     std::vector<Vec2> lowest(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       lowest[i] = lowest_point(bodies[i]);
-      supported[i] = distance_to_walls(lowest[i]) <= reach;
+      supported[i] = distance_to_walls(scene_, lowest[i]) <= reach;
     }
     // Bodies resting on supported bodies are supported too.
     for (bool changed = true; changed;) {
@@ -228,7 +216,7 @@ class Checker {
       for (std::size_t i = 0; i < n; ++i) {
         const Vec2& a = b.outline[i];
         const Vec2& c = b.outline[(i + 1) % n];
-        if (distance_to_walls(0.5 * (a + c)) > reach) {
+        if (distance_to_walls(scene_, 0.5 * (a + c)) > reach) {
           fail("body." + b.name,
                "is not enclosed although confined = true: its side " + point_text(a) + " - " +
                    point_text(c) + " has no wall within one spacing",
@@ -428,6 +416,15 @@ void validate_scene(const Scene& scene, const toml::table& root, const SceneSour
   check.bodies_supported();
   check.bodies_enclosed();
   check.names();
+}
+
+double distance_to_walls(const Scene& scene, const Vec2& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Wall& w : scene.walls) best = std::min(best, polyline_distance(p, w.points));
+  for (const RigidBody& rb : scene.rigid_bodies) {
+    best = std::min(best, polygon_boundary_distance(p, rb.outline));
+  }
+  return best;
 }
 
 }  // namespace duet

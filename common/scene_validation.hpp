@@ -26,4 +26,7 @@ namespace duet {
 ///   an existing body.
 void validate_scene(const Scene& scene, const toml::table& root, const SceneSource& source);
 
+/// Distance from p to the nearest wall or rigid body outline (infinity when there is none).
+double distance_to_walls(const Scene& scene, const Vec2& p);
+
 }  // namespace duet

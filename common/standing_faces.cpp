@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "common/geometry.hpp"
+#include "common/scene_validation.hpp"
 
 namespace duet {
 
@@ -35,11 +36,7 @@ std::optional<double> cohesionless_friction(const Material& m) {
 
 /// Distance from p to every boundary but the body's own outline: walls, rigid bodies, other bodies.
 double distance_to_others(const Scene& scene, std::size_t body, const Vec2& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const Wall& w : scene.walls) best = std::min(best, polyline_distance(p, w.points));
-  for (const RigidBody& rb : scene.rigid_bodies) {
-    best = std::min(best, polygon_boundary_distance(p, rb.outline));
-  }
+  double best = distance_to_walls(scene, p);
   for (std::size_t k = 0; k < scene.bodies.size(); ++k) {
     if (k != body) best = std::min(best, polygon_boundary_distance(p, scene.bodies[k].outline));
   }

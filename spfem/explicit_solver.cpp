@@ -116,11 +116,8 @@ double ExplicitSolver::time_step(const Particles& particles) {
   double dt = setup_.options.time_step == SpfemTimeStep::cell_size
                   ? cell_size_time_step(particles)
                   : gershgorin_time_step(particles);
-  // Central differences with a damping ratio xi in the highest mode are stable for
-  // omega dt <= 2 (sqrt(1 + xi^2) - xi); the linear bulk viscosity's xi is b1 (Abaqus Theory
-  // Manual, "Explicit dynamic analysis": the stability limit with bulk viscosity).
-  const double b1 = setup_.options.bulk_viscosity;
-  if (b1 > 0.0) dt *= std::sqrt(1.0 + b1 * b1) - b1;
+  // The bulk viscosity damps the highest mode, which shortens the stable step
+  dt *= bulk_viscosity_step_factor(setup_.options.bulk_viscosity);
   // Stress increment: a hypoplastic node's stiffness grows with its stress, so a node near the
   // apex (little stress, much strain rate: a free-falling grain hitting the pile) stiffens by
   // up to exp(M / |sigma| |D| dt) within one step, far beyond what the start-of-step stiffness

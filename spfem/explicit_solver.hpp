@@ -8,6 +8,7 @@
 // file: spfem/method.cpp translates a Scene into an EspfemSetup.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -23,6 +24,13 @@
 #include "spfem/stiffness_stabilisation.hpp"
 
 namespace duet::spfem {
+
+/// The factor on the undamped critical step that keeps central differences stable with a linear
+/// bulk viscosity b1: omega dt <= 2 (sqrt(1 + xi^2) - xi) with xi = b1 (Abaqus Theory Manual,
+/// "Explicit dynamic analysis": the stability limit with bulk viscosity); 1 without it.
+inline double bulk_viscosity_step_factor(double b1) {
+  return b1 > 0.0 ? std::sqrt(1.0 + b1 * b1) - b1 : 1.0;
+}
 
 /// The method options are the scene's [spfem] section (common/scene.hpp): alpha_factor,
 /// time_step_safety, damping (viscous, 1/s), local_damping (Cundall, -), stabilisation (-),

@@ -17,7 +17,8 @@ Result duet(const std::string& arguments) {
   return test::run_duet(arguments);
 }
 
-const std::string kFooting = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing.toml";
+const std::string kScenes = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/";
+const std::string kFooting = kScenes + "footing.toml";
 
 TEST(CheckCommand, PrintsParticlesAndEachMethodsStepsWithoutRunning) {
   const Result r = duet("check '" + kFooting + "'");
@@ -33,14 +34,14 @@ TEST(CheckCommand, PrintsParticlesAndEachMethodsStepsWithoutRunning) {
 TEST(CheckCommand, EspfemsStepCountsTheBulkViscosityAndSaysWhenOnlyTheRunCanKnow) {
   // cavity.toml: b1 = 1 scales the step by sqrt(1 + b1^2) - b1 = 0.414 (Abaqus' stability limit
   // with bulk viscosity, as ExplicitSolver::time_step): 10 s / (0.414 x 0.5 x 0.35 m / 176 m/s)
-  const std::string cavity = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/cavity.toml";
+  const std::string cavity = kScenes + "cavity.toml";
   const Result viscous = duet("check '" + cavity + "' --method espfem");
   ASSERT_EQ(viscous.status, 0) << viscous.output;
   EXPECT_NE(viscous.output.find("x 0.414 for bulk_viscosity 1), about 24,334 steps"),
             std::string::npos)
       << viscous.output;
   // The hypoplastic collapse: the stress-increment limit makes the count a lower bound
-  const std::string collapse = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
+  const std::string collapse = kScenes + "collapse.toml";
   const Result stiffening = duet("check '" + collapse + "' --method espfem");
   ASSERT_EQ(stiffening.status, 0) << stiffening.output;
   EXPECT_NE(stiffening.output.find("steps at least: spfem.stress_increment_limit"),
@@ -100,7 +101,7 @@ TEST(CheckCommand, RefusesWhatRunRefusesWithTheSameMessage) {
 
 TEST(CheckCommand, AQuasiStaticMethodRefusesACollapseAsRunDoes) {
   // The column's free vertical face in cohesionless sand has no static equilibrium (issue 44)
-  const std::string collapse = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/collapse.toml";
+  const std::string collapse = kScenes + "collapse.toml";
   const Result check = duet("check '" + collapse + "' --method ispfem");
   const Result run =
       duet("run '" + collapse + "' --method ispfem --out /nonexistent/never-written");

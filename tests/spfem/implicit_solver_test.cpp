@@ -48,6 +48,15 @@ IspfemSetup setup() {
   return s;
 }
 
+/// A no-slip (bonded) floor at y = 0 under the blocks.
+NodeBoundary bonded_floor() {
+  NodeBoundary floor;
+  floor.name = "floor";
+  floor.polyline = {Vec2(-0.05, 0.0), Vec2(0.15, 0.0)};
+  floor.condition = NodeCondition::bonded;
+  return floor;
+}
+
 TEST(ImplicitSolver, BodyWithNothingToHoldItFailsSayingTheTangentIsSingular) {
   Particles p = block(6, 4);
   ImplicitSolver solver(setup());
@@ -65,11 +74,7 @@ TEST(ImplicitSolver, BodyWithNothingToHoldItFailsSayingTheTangentIsSingular) {
 std::string failure_of_impossible_tolerance(bool adaptive) {
   Particles p = block(6, 4);
   IspfemSetup s = setup();
-  NodeBoundary floor;
-  floor.name = "floor";
-  floor.polyline = {Vec2(-0.05, 0.0), Vec2(0.15, 0.0)};
-  floor.condition = NodeCondition::bonded;
-  s.boundaries.push_back(floor);
+  s.boundaries.push_back(bonded_floor());
   s.implicit.adaptive = adaptive;
   s.implicit.tolerance = 1e-300;
   s.implicit.displacement_tolerance = 1e-300;
@@ -138,11 +143,7 @@ TEST(ImplicitSolver, BlockOnNoSlipFloorPressesWithItsWeight) {
   // Arrange: 8 x 5 nodes on a no-slip floor at y = 0
   Particles p = block(8, 5);
   IspfemSetup s = setup();
-  NodeBoundary floor;
-  floor.name = "floor";
-  floor.polyline = {Vec2(-0.05, 0.0), Vec2(0.15, 0.0)};
-  floor.condition = NodeCondition::bonded;
-  s.boundaries.push_back(floor);
+  s.boundaries.push_back(bonded_floor());
   ImplicitSolver solver(std::move(s));
   solver.initialise(p);
   // Act: one increment (quasi-static: gravity is there in full)
@@ -161,11 +162,7 @@ TEST(ImplicitSolver, PlateLiftedOffABlockLetsGoOfItsNodes) {
   Particles p = block(8, 5);
   IspfemSetup s = setup();
   s.gravity = Vec2::Zero();
-  NodeBoundary floor;
-  floor.name = "floor";
-  floor.polyline = {Vec2(-0.05, 0.0), Vec2(0.15, 0.0)};
-  floor.condition = NodeCondition::bonded;
-  s.boundaries.push_back(floor);
+  s.boundaries.push_back(bonded_floor());
   NodeBoundary plate;
   plate.name = "plate";
   plate.rigid_body = true;
