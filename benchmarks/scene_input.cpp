@@ -38,11 +38,24 @@ MaterialCheck model_material_check(bool force) {
   };
 }
 
+std::vector<std::string> measures_after_the_end(const Scene& scene) {
+  std::vector<std::string> out;
+  for (const Measure& m : scene.measures) {
+    if (m.at == MeasureAt::time && m.time > scene.time.end_time) {
+      out.push_back("measure." + m.name + " is taken at t = " + format_number(m.time) +
+                    " s, after time.end_time = " + format_number(scene.time.end_time) +
+                    " s: a run reads no value for it and scores nothing");
+    }
+  }
+  return out;
+}
+
 namespace {
 
 /// Legal values in a likely wrong unit (phi = 0.5, c = 10; with --force also those refused
-/// otherwise, E = 20), and rectangles the lattice does not fit (common/lattice.hpp): said on the
-/// terminal. Once per message and process: compare and stability load a scene once per run.
+/// otherwise, E = 20), rectangles the lattice does not fit (common/lattice.hpp) and measures taken
+/// after the end time: said on the terminal. Once per message and process: compare and stability
+/// load a scene once per run.
 void warn_implausible(const Scene& scene) {
   static std::set<std::string> said;
   std::vector<std::string> warnings;
@@ -54,6 +67,8 @@ void warn_implausible(const Scene& scene) {
   }
   const std::vector<std::string> misfits = lattice_misfits(scene);
   warnings.insert(warnings.end(), misfits.begin(), misfits.end());
+  const std::vector<std::string> late = measures_after_the_end(scene);
+  warnings.insert(warnings.end(), late.begin(), late.end());
   for (const std::string& w : warnings) {
     const std::string line = "duet: warning: " + scene.path + ": " + w;
     if (said.insert(line).second) std::cerr << line << '\n';

@@ -19,6 +19,10 @@ MaterialCheck model_material_check(bool force = false);
 /// unless DP is a positive finite number (the loader would name `--set spacing=` instead).
 std::string spacing_override(double spacing);
 
+/// One line per measure taken at a time (at = "time") after the scene's end time, which a run
+/// never reaches: its value is null and nothing is scored (`--set time.end_time` shortened).
+std::vector<std::string> measures_after_the_end(const Scene& scene);
+
 /// Loads with model_material_check(force); the values in a doubtful unit that it lets through
 /// are said on stderr as warnings.
 Scene load_scene_checked(const std::string& path, const std::vector<std::string>& overrides = {},

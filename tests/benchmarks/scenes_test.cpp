@@ -75,6 +75,19 @@ INSTANTIATE_TEST_SUITE_P(Scenes, BenchmarkScene,
                            return name;
                          });
 
+TEST(BenchmarkScenes, AMeasureTakenAfterAShortenedEndTimeIsNamed) {
+  const std::string cavity = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/cavity.toml";
+  EXPECT_TRUE(measures_after_the_end(load_scene_checked(cavity)).empty());
+  // a/a0 = 1.2 at t = 2 s: the pressures at a/a0 1.5 (t = 5 s) and 2 (t = 10 s) are never taken
+  const std::vector<std::string> late =
+      measures_after_the_end(load_scene_checked(cavity, {"time.end_time=2"}));
+  ASSERT_EQ(late.size(), 2u);
+  EXPECT_NE(late[0].find("measure.pressure is taken at t = 10 s, after time.end_time = 2 s"),
+            std::string::npos)
+      << late[0];
+  EXPECT_NE(late[1].find("measure.pressure_a15"), std::string::npos) << late[1];
+}
+
 TEST(BenchmarkScenes, AllEightArePresent) {
   EXPECT_GE(toml_files(fs::path(DUET_SOURCE_DIR) / "benchmarks/scenes").size(), 8u);
 }
