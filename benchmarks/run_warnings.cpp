@@ -23,6 +23,20 @@ bool driven_at(const Scene& scene, double time) {
   return false;
 }
 
+/// The fastest prescribed boundary speed at `time` (m/s): a translating wall's or rigid body's
+/// speed, a radial wall's radial speed; 0 when nothing moves.
+double fastest_driven_speed(const Scene& scene, double time) {
+  double v = 0.0;
+  for (const Wall& w : scene.walls) {
+    v = std::max(v, w.radial ? std::abs(schedule_value(w.radial_velocity, time).x())
+                             : schedule_value(w.velocity, time).norm());
+  }
+  for (const RigidBody& rb : scene.rigid_bodies) {
+    v = std::max(v, schedule_value(rb.velocity, time).norm());
+  }
+  return v;
+}
+
 /// A number of the diagnostics at a dotted path ("newton.cuts"); NaN when absent.
 double diagnostic(const Json& diagnostics, const std::string& path) {
   const Json* node = &diagnostics;
@@ -283,6 +297,26 @@ std::vector<std::string> run_warnings(const Scene& scene, bool inertial,
                     end_time, energy.end_over_peak(), energy.peak_time);
     }
     out.emplace_back(text);
+  }
+  // While walls or bodies are driven, the soil they move follows them: a mechanism moves part of
+  // the soil at about the driven speed v, so the whole soil's kinetic energy above 1/2 M v^2 says
+  // that it flows faster than anything drives it (a collapse beside the footing, particles thrown
+  // off). A load drives by force, with no speed to compare: not judged.
+  if (inertial && scene.loads.empty() && driven_at(scene, end_time)) {
+    const double v = fastest_driven_speed(scene, end_time);
+    const double bound = 0.5 * energy.end_carriers.mass * v * v;
+    if (v > 0.0 && energy.end > bound) {
+      const KineticEnergyCarriers& c = energy.end_carriers;
+      std::snprintf(text, sizeof text,
+                    "not at rest while driven: the soil's kinetic energy at t = %g s, %.3g J/m, is "
+                    "%.3g times what all of it would have at the fastest driven speed, %.3g m/s: "
+                    "it moves faster than anything drives it (a collapse, or particles thrown off; "
+                    "%zu of %zu particles carry half of it, the most, particle %zu at (%.4g, %.4g) "
+                    "m, at %.3g m/s)",
+                    end_time, energy.end, energy.end / bound, v, c.half, particles, c.largest,
+                    c.position.x(), c.position.y(), c.speed);
+      out.emplace_back(text);
+    }
   }
   if (inertial && !budget.incomplete() && budget.peak_ratio() > 1.2) {
     std::snprintf(text, sizeof text,

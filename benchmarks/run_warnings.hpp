@@ -51,6 +51,9 @@ bool cannot_soften(const Scene& scene);
 ///   rigid body still, no load), kinetic energy at the end above 1e-3 of its peak and 1e-4 of the
 ///   energy put in; when at most 1 % of the particles (at least one) carry half of it, said as
 ///   particles thrown off the body, with the one that carries most (energy.end_carriers);
+/// - not at rest while driven: a dynamic method, walls or rigid bodies driven at the end (no
+///   load), and the soil's kinetic energy at the end above 1/2 M v^2, M its mass
+///   (energy.end_carriers.mass) and v the fastest driven speed then;
 /// - close to the energy check: the kinetic energy reached more than 1.2 times the energy put in
 ///   (the check fails a run at kinetic_energy_factor, 2 by default).
 /// - a moving boundary that never touched: a rigid body or wall with a prescribed motion whose

@@ -56,6 +56,26 @@ inline constexpr EnumName<Surface> kSurfaceNames[] = {
     {Surface::friction, "friction"},
 };
 
+inline constexpr EnumName<SphWallStress> kSphWallStressNames[] = {
+    {SphWallStress::sigma_max, "sigma-max"},
+    {SphWallStress::bui, "bui"},
+};
+
+inline constexpr EnumName<SphDummyVelocity> kSphDummyVelocityNames[] = {
+    {SphDummyVelocity::wall, "wall"},
+    {SphDummyVelocity::extrapolated, "extrapolated"},
+};
+
+inline constexpr EnumName<SphIntegrator> kSphIntegratorNames[] = {
+    {SphIntegrator::verlet, "verlet"},
+    {SphIntegrator::leapfrog, "leapfrog"},
+};
+
+inline constexpr EnumName<SpfemTimeStep> kSpfemTimeStepNames[] = {
+    {SpfemTimeStep::cell_size, "cell-size"},
+    {SpfemTimeStep::gershgorin, "gershgorin"},
+};
+
 /// Every name of a table, in its order (the choices a key offers).
 template <class Enum, std::size_t N>
 std::vector<std::string> names_of(const EnumName<Enum> (&table)[N]) {

@@ -14,9 +14,14 @@ KineticEnergyCarriers kinetic_energy_carriers(const Particles& particles) {
   for (std::size_t i = 0; i < n; ++i) {
     e[i] = 0.5 * particles.mass[i] * particles.velocity[i].squaredNorm();
     total += e[i];
+    c.mass += particles.mass[i];
     if (e[i] > e[c.largest]) c.largest = i;
   }
-  if (!(total > 0.0)) return KineticEnergyCarriers{};
+  if (!(total > 0.0)) {  // nothing moves: only the mass is known
+    KineticEnergyCarriers still;
+    still.mass = c.mass;
+    return still;
+  }
   c.speed = particles.velocity[c.largest].norm();
   c.position = particles.position[c.largest];
   std::sort(e.begin(), e.end(), std::greater<>());
@@ -31,6 +36,7 @@ Json KineticEnergyCarriers::to_json() const {
   j["largest_particle"] = static_cast<long>(largest);
   j["largest_speed"] = speed;
   j["largest_position"] = Json::array({position.x(), position.y()});
+  j["mass"] = mass;
   return j;
 }
 

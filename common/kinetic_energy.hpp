@@ -27,6 +27,7 @@ struct KineticEnergyCarriers {
   std::size_t largest = 0;  // the particle with the most kinetic energy (row)
   double speed = 0.0;       // its speed (m/s)
   Vec2 position = Vec2::Zero();
+  double mass = 0.0;  // kg/m: every particle's mass together
 
   Json to_json() const;
 };

@@ -242,8 +242,10 @@ struct SphOptions {
   double sound_speed = 100.0;  // m/s
   std::string wall_treatment = "dummy";
   int dummy_layers = 3;
-  SphWallStress wall_stress = SphWallStress::sigma_max;
-  SphDummyVelocity dummy_velocity = SphDummyVelocity::wall;
+  // Bui 2008's dummies (the soil particle's stress, the velocity extrapolated through the wall):
+  // with Peng's pair a footing's or a base's dummies make energy and the run fails (sph/README.md).
+  SphWallStress wall_stress = SphWallStress::bui;
+  SphDummyVelocity dummy_velocity = SphDummyVelocity::extrapolated;
   SphIntegrator integrator = SphIntegrator::verlet;
   bool continuity = false;
 };
@@ -266,7 +268,8 @@ struct SpfemOptions {
   // Largest relative stress increment M / |sigma| |D| dt a step may give a node whose stiffness
   // grows with its stress (hypoplastic); 0 = no limit.
   double stress_increment_limit = 0.5;
-  SpfemTimeStep time_step = SpfemTimeStep::cell_size;
+  // The cell-size rule falls with any sliver at the surface (spfem/README.md, step 2)
+  SpfemTimeStep time_step = SpfemTimeStep::gershgorin;
   double damping = 0.0;        // 1/s: viscous damping force -damping m v (quasi-static runs)
   double local_damping = 0.0;  // -: local non-viscous damping, -local_damping |F| sign(v) (Cundall)
   // Stabilisation of nodal integration: weight of the smoothed-strain stabilisation term

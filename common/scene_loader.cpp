@@ -38,6 +38,13 @@ const std::vector<std::string> kMeasureKeys = scene_keys_of("measure.<name>");
 const std::vector<std::string> kStrengthReductionKeys = scene_keys_of("strength_reduction");
 const std::vector<std::string> kCheckKeys = scene_keys_of("checks");
 const std::vector<std::string> kReferenceKeys = scene_keys_of("reference.<measure>");
+
+/// The value of a choice key spelled by `table`; `fallback` (the struct's default) when absent.
+template <class Enum, std::size_t N>
+Enum read_named(SectionReader& r, std::string_view key, Enum fallback,
+                const EnumName<Enum> (&table)[N]) {
+  return value_named(r.choice(key, names_of(table), std::string(name_of(fallback, table))), table);
+}
 const std::vector<std::string> kSphKeys = scene_keys_of("sph");
 const std::vector<std::string> kSpfemKeys = scene_keys_of("spfem");
 const std::vector<std::string> kImplicitKeys = scene_keys_of("spfem.implicit");
@@ -427,15 +434,10 @@ SphOptions read_sph(SectionReader& r) {
   o.sound_speed = r.number("sound_speed", o.sound_speed, positive("a speed (m/s)"));
   o.wall_treatment = r.choice("wall_treatment", {"dummy"}, o.wall_treatment);
   o.dummy_layers = r.integer("dummy_layers", o.dummy_layers, 1);
-  o.wall_stress = r.choice("wall_stress", {"sigma-max", "bui"}, "sigma-max") == "sigma-max"
-                      ? SphWallStress::sigma_max
-                      : SphWallStress::bui;
-  o.dummy_velocity = r.choice("dummy_velocity", {"wall", "extrapolated"}, "wall") == "wall"
-                         ? SphDummyVelocity::wall
-                         : SphDummyVelocity::extrapolated;
-  o.integrator = r.choice("integrator", {"verlet", "leapfrog"}, "verlet") == "verlet"
-                     ? SphIntegrator::verlet
-                     : SphIntegrator::leapfrog;
+  // Each choice's default is the struct's (common/scene.hpp), through the enum's name table.
+  o.wall_stress = read_named(r, "wall_stress", o.wall_stress, kSphWallStressNames);
+  o.dummy_velocity = read_named(r, "dummy_velocity", o.dummy_velocity, kSphDummyVelocityNames);
+  o.integrator = read_named(r, "integrator", o.integrator, kSphIntegratorNames);
   o.continuity = r.boolean("continuity", o.continuity);
   r.finish();
   return o;
@@ -448,9 +450,7 @@ SpfemOptions read_spfem(SectionReader& r) {
       r.number("min_edge_factor", o.min_edge_factor, in_closed(0.0, 0.5, "a fraction of dp (-)"));
   o.time_step_safety =
       r.number("time_step_safety", o.time_step_safety, positive("a safety factor (-)"));
-  o.time_step = r.choice("time_step", {"cell-size", "gershgorin"}, "cell-size") == "cell-size"
-                    ? SpfemTimeStep::cell_size
-                    : SpfemTimeStep::gershgorin;
+  o.time_step = read_named(r, "time_step", o.time_step, kSpfemTimeStepNames);
   o.damping = r.number("damping", o.damping, non_negative("a damping coefficient (1/s)"));
   o.local_damping = r.number("local_damping", o.local_damping,
                              in_closed(0.0, 1.0, "a local damping coefficient (-)"));

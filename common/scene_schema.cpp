@@ -326,10 +326,10 @@ const char* to_string(SphKernel k) {
   return k == SphKernel::cubic_spline ? "cubic-spline" : "wendland-c2";
 }
 const char* to_string(SphWallStress w) {
-  return w == SphWallStress::sigma_max ? "sigma-max" : "bui";
+  return name_of(w, kSphWallStressNames);
 }
 const char* to_string(SphIntegrator i) {
-  return i == SphIntegrator::verlet ? "verlet" : "leapfrog";
+  return name_of(i, kSphIntegratorNames);
 }
 const char* to_string(Remesh r) {
   return r == Remesh::every_step ? "every-step" : "angle";

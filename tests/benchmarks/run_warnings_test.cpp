@@ -132,6 +132,30 @@ TEST(RunWarnings, AMovingBodyThatNeverCarriedAForceIsNamed) {
   EXPECT_TRUE(warnings(still, 0.0).empty());
 }
 
+TEST(RunWarnings, SoilMovingFasterThanWhatDrivesItIsNotAtRest) {
+  // Soil of 2 m x 1 m at 1800 kg/m^3 (3,600 kg/m) under a footing driven at 0.05 m/s: all of it
+  // at that speed has 1/2 M v^2 = 4.5 J/m.
+  const Scene scene = load_scene_checked_from_string(kFooting, "footing.toml", {});
+  const EnergyBudget budget(scene, Particles{}, 0.0);
+  const auto warnings = [&](double end_energy, bool inertial) {
+    KineticEnergyRecord energy;
+    energy.record(0.5, 100.0);
+    energy.record(1.0, end_energy);
+    energy.end_carriers.mass = 3600.0;
+    return run_warnings(scene, inertial, energy, budget, 1.0, Json::object(), 100,
+                        {{"footing", 1e3}});
+  };
+  EXPECT_TRUE(warnings(1.0, true).empty());  // a mechanism moving part of it at about 0.05 m/s
+  const auto fast = warnings(9.0, true);
+  ASSERT_EQ(fast.size(), 1u);
+  EXPECT_TRUE(says(fast, "not at rest while driven")) << fast.front();
+  EXPECT_NE(fast.front().find("9 J/m, is 2 times what all of it would have at the fastest driven "
+                              "speed, 0.05 m/s"),
+            std::string::npos)
+      << fast.front();
+  EXPECT_TRUE(warnings(9.0, false).empty());  // a quasi-static run's kinetic energy is not its own
+}
+
 TEST(LoadDrop, IsTheLargestFallBelowTheRunningMaximum) {
   // issue 44's ispfem footing: the load climbs to 110 kPa and falls to 57 kPa
   const LoadDrop d = largest_load_drop({0, 1, 2, 3, 4}, {0, 100, 110, 57, 60});

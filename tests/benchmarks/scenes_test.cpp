@@ -88,6 +88,49 @@ TEST(BenchmarkScenes, AMeasureTakenAfterAShortenedEndTimeIsNamed) {
   EXPECT_NE(late[1].find("measure.pressure_a15"), std::string::npos) << late[1];
 }
 
+/// The method options of `file` ([sph], [spfem], [spfem.implicit]) set without a reason: a key
+/// line is explained by a comment on it, by a comment line right above it, or by the explained key
+/// line right above it (a group under one comment); a table's first keys also by a comment right
+/// above its header.
+std::vector<std::string> unexplained_method_options(const fs::path& file) {
+  std::vector<std::string> out;
+  std::ifstream in(file);
+  std::string line, table, previous;
+  bool explained = false;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::size_t first = line.find_first_not_of(" \t");
+    const std::string text = first == std::string::npos ? "" : line.substr(first);
+    if (text.empty()) {
+      explained = false;
+    } else if (text.front() == '#') {
+      explained = true;
+    } else if (text.front() == '[') {
+      table = text.substr(1, text.find(']') - 1);
+      explained = !previous.empty() && previous.front() == '#';
+    } else if (table == "sph" || table == "spfem" || table == "spfem.implicit") {
+      explained = explained || text.find('#') != std::string::npos;
+      if (!explained) out.push_back(file.filename().string() + ":" + std::to_string(number));
+    }
+    previous = text;
+  }
+  return out;
+}
+
+// A benchmark scene keeps a method option only where it states a modelling choice or a setting
+// the method's default does not give, and says why; the defaults serve every other line.
+TEST(BenchmarkScenes, EveryMethodOptionSaysWhy) {
+  for (const fs::path& file : toml_files(fs::path(DUET_SOURCE_DIR) / "benchmarks/scenes")) {
+    for (const std::string& where : unexplained_method_options(file)) {
+      ADD_FAILURE() << where << ": a method option without a comment saying why";
+    }
+  }
+  // The rule itself: a bare key is caught, a commented one is not.
+  const fs::path probe = fs::temp_directory_path() / "duet-method-option-probe.toml";
+  std::ofstream(probe) << "[sph]\ncfl = 0.4\n\n# why\n[spfem]\nstabilisation = 0.1\n";
+  EXPECT_EQ(unexplained_method_options(probe),
+            std::vector<std::string>{probe.filename().string() + ":2"});
+}
+
 TEST(BenchmarkScenes, AllEightArePresent) {
   EXPECT_GE(toml_files(fs::path(DUET_SOURCE_DIR) / "benchmarks/scenes").size(), 8u);
 }

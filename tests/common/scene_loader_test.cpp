@@ -164,12 +164,19 @@ TEST(SceneLoader, OverrideOfAModelParameterIsCheckedByTheModel) {
   EXPECT_EQ(message.rfind("--set material.sand.nu=0.62: ", 0), 0u) << message;
 }
 
-TEST(SceneLoader, DummyVelocityDefaultsToTheWallsAndReadsExtrapolated) {
-  EXPECT_EQ(load_scene_from_string(kScene, "scene.toml").sph.dummy_velocity,
-            SphDummyVelocity::wall);
-  EXPECT_EQ(load_scene_from_string(kScene, "scene.toml", {"sph.dummy_velocity=extrapolated"})
-                .sph.dummy_velocity,
-            SphDummyVelocity::extrapolated);
+// Bui's wall pair and the Gershgorin step are the defaults (common/scene.hpp says why); the
+// other choices read back.
+TEST(SceneLoader, MethodDefaultsAreBuisWallsAndTheGershgorinStep) {
+  const Scene plain = load_scene_from_string(kScene, "scene.toml");
+  EXPECT_EQ(plain.sph.dummy_velocity, SphDummyVelocity::extrapolated);
+  EXPECT_EQ(plain.sph.wall_stress, SphWallStress::bui);
+  EXPECT_EQ(plain.spfem.time_step, SpfemTimeStep::gershgorin);
+  const Scene peng = load_scene_from_string(
+      kScene, "scene.toml",
+      {"sph.dummy_velocity=wall", "sph.wall_stress=sigma-max", "spfem.time_step=cell-size"});
+  EXPECT_EQ(peng.sph.dummy_velocity, SphDummyVelocity::wall);
+  EXPECT_EQ(peng.sph.wall_stress, SphWallStress::sigma_max);
+  EXPECT_EQ(peng.spfem.time_step, SpfemTimeStep::cell_size);
 }
 
 TEST(SceneLoader, UnknownDummyVelocityIsRefusedNamingTheChoices) {
