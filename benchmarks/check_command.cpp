@@ -155,14 +155,16 @@ void print_method(const Scene& scene, const MethodInfo& method, const InitialWav
          << with_commas(std::ceil(scene.time.end_time / dt)) << " steps; "
          << sph_sound_speed_note(scene, wave_speed);
   } else if (method.name == "espfem" && wave_speed > 0.0) {
-    // spfem/explicit_solver.cpp: dt = safety x cell size / P-wave speed (cell size about dp),
-    // times the linear bulk viscosity's factor
+    // spfem/explicit_solver.cpp: dt = safety x the rule's step on a lattice (a fraction of dp /
+    // P-wave speed), times the linear bulk viscosity's factor
     const double b1 = scene.spfem.bulk_viscosity;
     const double viscous = spfem::bulk_viscosity_step_factor(b1);
-    const double dt = viscous * scene.spfem.time_step_safety * scene.spacing / wave_speed;
+    const double rule = spfem::lattice_step_over_dp_per_c(scene.spfem.time_step);
+    const double dt = viscous * scene.spfem.time_step_safety * rule * scene.spacing / wave_speed;
     line << "time step about " << about(dt) << " s (safety "
-         << format_number(scene.spfem.time_step_safety) << " x dp / P-wave speed "
-         << about(wave_speed) << " m/s";
+         << format_number(scene.spfem.time_step_safety) << " x ";
+    if (rule != 1.0) line << format_number(rule) << " x ";
+    line << "dp / P-wave speed " << about(wave_speed) << " m/s";
     if (b1 > 0.0) line << " x " << about(viscous) << " for bulk_viscosity " << format_number(b1);
     line << "), about " << with_commas(std::ceil(scene.time.end_time / dt)) << " steps";
     if (waves.stiffening && scene.spfem.stress_increment_limit > 0.0) {

@@ -108,7 +108,7 @@ const std::vector<SmokeCase> kCases = {
      "0.30); with Peng's sigma_max the tensile instability made twice the load's work by "
      "t = 0.071 s; with the wall's velocity a particle crossed the clamp (tip +23 %)"},
     {"cantilever-2", "sph", 0.02, Outcome::fails, 0, "left the domain", "as the cantilever"},
-    {"oedometer", "sph", 0.05, Outcome::within, 0, "", "K0 -1.5 % (tolerance 2 %)"},
+    {"oedometer", "sph", 0.05, Outcome::within, 0, "", "K0 -1.3 % (tolerance 2 %)"},
     {"collapse", "sph", 0.01, Outcome::outside, 0.40, "",
      "run-out -36 % at dp 1 cm (tolerance 15 %): resolution; -6 % at 2.5 mm (RESULTS.md); "
      "height -5.2 % (the top particle starts 5 % below the surface at this spacing)"},
@@ -153,9 +153,9 @@ const std::vector<SmokeCase> kCases = {
      "q/c_u against the CalculiX curve from w/B 0.03 to 0.1: worst +15.9 % at w/B 0.095 "
      "(tolerance 3 %), where the load rings (4 nodes under the half footing); 5.44 at w/B 0.1 "
      "against 5.50"},
-    {"footing-deep", "espfem", 0.25, Outcome::outside, 0.36, "",
-     "q/s_u against the CalculiX curve from w/B 0.03 to 0.1: worst -35 % at w/B 0.058 (tolerance "
-     "5 %; 2 nodes under the half footing: resolution), 4.27 at w/B 0.1 against 4.95"},
+    {"footing-deep", "espfem", 0.25, Outcome::outside, 0.35, "",
+     "q/s_u against the CalculiX curve from w/B 0.03 to 0.1: worst -33 % at w/B 0.058 (tolerance "
+     "5 %; 2 nodes under the half footing: resolution), 4.72 at w/B 0.1 against 4.95"},
     {"cavity", "espfem", 0.5, Outcome::outside, 0.12, "",
      "p/c_u +10.5 %, +8.0 %, +3.5 % at a/a0 1.2, 1.5, 2 at dp 0.5 m (tolerance 10 %): the "
      "scene's bulk viscosity (b1 = 1), whose stress scales with the spacing, adds 4 % at a/a0 1.2 "

@@ -109,6 +109,18 @@ TEST(TimeStep, LatticeStepIsBelowTheCentralDifferenceLimitAndWithinAFactorTwoOfI
   EXPECT_GT(dt, 0.5 * limit);
 }
 
+// duet check's estimate of a run's steps takes the rule's step on a lattice as this fraction of
+// dp / c; an interior-dominated block's step is within 5 % of it.
+TEST(TimeStep, GershgorinStepOnALatticeIsItsStatedFractionOfDpOverC) {
+  Particles p = block(12, 8);
+  ExplicitSolver solver(setup(1.0));
+  solver.initialise(p);
+  const double dt = solver.step(p, 0.0);
+  const double c =
+      std::sqrt(kYoung * (1.0 - kPoisson) / ((1.0 + kPoisson) * (1.0 - 2.0 * kPoisson)) / kDensity);
+  EXPECT_NEAR(dt / (kSpacing / c), lattice_step_over_dp_per_c(SpfemTimeStep::gershgorin), 0.035);
+}
+
 TEST(TimeStep, SurfaceNodeHeldByASliverDoesNotCutTheStep) {
   // Arrange: the same block, and once more with a node 0.25 dp above the middle of a top surface
   // edge (outside the circumcircles of the lattice squares, so the top row stays). It is held by

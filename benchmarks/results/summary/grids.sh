@@ -22,6 +22,8 @@ S=runs/summary; F=runs/summary-fine; mkdir -p $S $F
   grid $F footing sph,espfem,ispfem 0.1
   grid $S footing-deep sph,espfem,ispfem 0.25
   grid $F footing-deep sph,espfem,ispfem 0.125
+  grid $S strip-sand sph,espfem,ispfem 0.125,0.1
+  grid $F strip-sand sph,espfem,ispfem 0.05
 } &
 {
   grid $S collapse sph,espfem 0.01,0.0075,0.005
@@ -36,4 +38,4 @@ S=runs/summary; F=runs/summary-fine; mkdir -p $S $F
 wait
 ./duet summary $S/oedometer $S/bar $S/cantilever $S/cantilever-2 $S/cantilever-3 $S/footing \
   $F/footing $S/footing-limit $F/footing-limit $S/footing-deep $F/footing-deep $S/collapse $F/collapse $S/collapse-bui \
-  $F/collapse-bui $S/cavity $F/cavity --out runs/summary-all
+  $F/collapse-bui $S/cavity $F/cavity $S/strip-sand $F/strip-sand --out runs/summary-all
