@@ -12,17 +12,6 @@ namespace duet {
 
 namespace {
 
-bool driven_at(const Scene& scene, double time) {
-  if (!scene.loads.empty()) return true;
-  for (const Wall& w : scene.walls) {
-    if (w.radial || schedule_value(w.velocity, time) != Vec2::Zero()) return true;
-  }
-  for (const RigidBody& rb : scene.rigid_bodies) {
-    if (schedule_value(rb.velocity, time) != Vec2::Zero()) return true;
-  }
-  return false;
-}
-
 /// The fastest prescribed boundary speed at `time` (m/s): a translating wall's or rigid body's
 /// speed, a radial wall's radial speed; 0 when nothing moves.
 double fastest_driven_speed(const Scene& scene, double time) {
@@ -35,6 +24,15 @@ double fastest_driven_speed(const Scene& scene, double time) {
     v = std::max(v, schedule_value(rb.velocity, time).norm());
   }
   return v;
+}
+
+/// A load, a radial wall (at any speed) or a boundary moving at `time`.
+bool driven_at(const Scene& scene, double time) {
+  if (!scene.loads.empty()) return true;
+  for (const Wall& w : scene.walls) {
+    if (w.radial) return true;
+  }
+  return fastest_driven_speed(scene, time) > 0.0;
 }
 
 /// A number of the diagnostics at a dotted path ("newton.cuts"); NaN when absent.
@@ -302,7 +300,7 @@ std::vector<std::string> run_warnings(const Scene& scene, bool inertial,
   // the soil at about the driven speed v, so the whole soil's kinetic energy above 1/2 M v^2 says
   // that it flows faster than anything drives it (a collapse beside the footing, particles thrown
   // off). A load drives by force, with no speed to compare: not judged.
-  if (inertial && scene.loads.empty() && driven_at(scene, end_time)) {
+  if (inertial && scene.loads.empty()) {
     const double v = fastest_driven_speed(scene, end_time);
     const double bound = 0.5 * energy.end_carriers.mass * v * v;
     if (v > 0.0 && energy.end > bound) {

@@ -56,6 +56,11 @@ inline constexpr EnumName<Surface> kSurfaceNames[] = {
     {Surface::friction, "friction"},
 };
 
+inline constexpr EnumName<SphKernel> kSphKernelNames[] = {
+    {SphKernel::cubic_spline, "cubic-spline"},
+    {SphKernel::wendland_c2, "wendland-c2"},
+};
+
 inline constexpr EnumName<SphWallStress> kSphWallStressNames[] = {
     {SphWallStress::sigma_max, "sigma-max"},
     {SphWallStress::bui, "bui"},
@@ -74,6 +79,11 @@ inline constexpr EnumName<SphIntegrator> kSphIntegratorNames[] = {
 inline constexpr EnumName<SpfemTimeStep> kSpfemTimeStepNames[] = {
     {SpfemTimeStep::cell_size, "cell-size"},
     {SpfemTimeStep::gershgorin, "gershgorin"},
+};
+
+inline constexpr EnumName<Remesh> kRemeshNames[] = {
+    {Remesh::every_step, "every-step"},
+    {Remesh::angle, "angle"},
 };
 
 /// Every name of a table, in its order (the choices a key offers).

@@ -422,9 +422,8 @@ InitialStress read_initial_stress(SectionReader& r) {
 
 SphOptions read_sph(SectionReader& r) {
   SphOptions o;
-  o.kernel = r.choice("kernel", {"cubic-spline", "wendland-c2"}, "cubic-spline") == "cubic-spline"
-                 ? SphKernel::cubic_spline
-                 : SphKernel::wendland_c2;
+  // Each choice's default is the struct's (common/scene.hpp), through the enum's name table.
+  o.kernel = read_named(r, "kernel", o.kernel, kSphKernelNames);
   o.h_over_dp = r.number("h_over_dp", o.h_over_dp, positive("a ratio h/dp (-)"));
   o.alpha = r.number("alpha", o.alpha, non_negative("an artificial viscosity coefficient (-)"));
   o.beta = r.number("beta", o.beta, non_negative("an artificial viscosity coefficient (-)"));
@@ -434,7 +433,6 @@ SphOptions read_sph(SectionReader& r) {
   o.sound_speed = r.number("sound_speed", o.sound_speed, positive("a speed (m/s)"));
   o.wall_treatment = r.choice("wall_treatment", {"dummy"}, o.wall_treatment);
   o.dummy_layers = r.integer("dummy_layers", o.dummy_layers, 1);
-  // Each choice's default is the struct's (common/scene.hpp), through the enum's name table.
   o.wall_stress = read_named(r, "wall_stress", o.wall_stress, kSphWallStressNames);
   o.dummy_velocity = read_named(r, "dummy_velocity", o.dummy_velocity, kSphDummyVelocityNames);
   o.integrator = read_named(r, "integrator", o.integrator, kSphIntegratorNames);
@@ -462,9 +460,7 @@ SpfemOptions read_spfem(SectionReader& r) {
                               in_closed(0.0, 1.0, "a linear bulk viscosity (-)"));
   o.stress_increment_limit = r.number("stress_increment_limit", o.stress_increment_limit,
                                       non_negative("a relative stress increment per step (-)"));
-  o.remesh = r.choice("remesh", {"every-step", "angle"}, "every-step") == "every-step"
-                 ? Remesh::every_step
-                 : Remesh::angle;
+  o.remesh = read_named(r, "remesh", o.remesh, kRemeshNames);
   o.remesh_angle = r.number("remesh_angle", o.remesh_angle, in_closed(0.0, 90.0, "an angle (deg)"));
   o.remesh_angle_fraction =
       r.number("remesh_angle_fraction", o.remesh_angle_fraction,

@@ -323,7 +323,7 @@ const char* to_string(MeasureAt a) {
   return name_of(a, kMeasureAtNames);
 }
 const char* to_string(SphKernel k) {
-  return k == SphKernel::cubic_spline ? "cubic-spline" : "wendland-c2";
+  return name_of(k, kSphKernelNames);
 }
 const char* to_string(SphWallStress w) {
   return name_of(w, kSphWallStressNames);
@@ -332,7 +332,7 @@ const char* to_string(SphIntegrator i) {
   return name_of(i, kSphIntegratorNames);
 }
 const char* to_string(Remesh r) {
-  return r == Remesh::every_step ? "every-step" : "angle";
+  return name_of(r, kRemeshNames);
 }
 
 }  // namespace duet

@@ -26,9 +26,9 @@
 namespace duet::spfem {
 
 /// The step of each rule on an undistorted square lattice at safety 1, over dp / c (c the P-wave
-/// speed): the cell-size rule's is 1 (the cell's side is dp); the Gershgorin bound's is 0.70, 0.685
-/// of the true limit 2 / omega_max (asserted by
-/// TimeStep.GershgorinStepOnALatticeIsItsStatedFraction OfDpOverC). duet check estimates a run's
+/// speed): the cell-size rule's is 1 (the cell's side is dp); the Gershgorin bound's is 0.70,
+/// 0.685 of the true limit 2 / omega_max (asserted by the test
+/// TimeStep.GershgorinStepOnALatticeIsItsStatedFractionOfDpOverC). duet check estimates a run's
 /// steps from it.
 inline double lattice_step_over_dp_per_c(SpfemTimeStep rule) {
   return rule == SpfemTimeStep::gershgorin ? 0.70 : 1.0;

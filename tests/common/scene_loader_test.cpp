@@ -56,6 +56,12 @@ TEST(SceneLoader, EveryEnumNameReadsBackAsItself) {
   expect_names_round_trip(kInitialStressKindNames);
   expect_names_round_trip(kWallConditionNames);
   expect_names_round_trip(kSurfaceNames);
+  expect_names_round_trip(kSphKernelNames);
+  expect_names_round_trip(kSphWallStressNames);
+  expect_names_round_trip(kSphDummyVelocityNames);
+  expect_names_round_trip(kSphIntegratorNames);
+  expect_names_round_trip(kSpfemTimeStepNames);
+  expect_names_round_trip(kRemeshNames);
   EXPECT_STREQ(to_string(MeasureKind::point_displacement), "point_displacement");
   EXPECT_STREQ(to_string(InitialStressKind::gravity_loading), "gravity-loading");
   EXPECT_THROW(name_of(static_cast<MeasureKind>(99), kMeasureKindNames), std::logic_error);
