@@ -19,6 +19,11 @@ struct EnumName {
   const char* name;
 };
 
+inline constexpr EnumName<Formulation> kFormulationNames[] = {
+    {Formulation::plane_strain, "plane-strain"},
+    {Formulation::axisymmetric, "axisymmetric"},
+};
+
 inline constexpr EnumName<MeasureKind> kMeasureKindNames[] = {
     {MeasureKind::front, "front"},
     {MeasureKind::height, "height"},

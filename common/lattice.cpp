@@ -124,13 +124,16 @@ void sample_body(const Scene& scene, std::size_t body_index, Particles& particle
   });
   const std::size_t first = particles.size();
   particles.resize(first + centres.size());
+  // Axisymmetric: the sample's area A sweeps the ring 2 pi r A about the axis x = 0 (Pappus)
+  const bool ring = scene.formulation == Formulation::axisymmetric;
   for (std::size_t k = 0; k < centres.size(); ++k) {
     const std::size_t p = first + k;
+    const double volume = ring ? 2.0 * std::numbers::pi * centres[k].x() * volumes[k] : volumes[k];
     particles.position[p] = centres[k];
     particles.velocity[p] = body.initial_velocity;
     particles.displacement[p] = Vec2::Zero();
-    particles.volume[p] = volumes[k];
-    particles.mass[p] = material.density * volumes[k];
+    particles.volume[p] = volume;
+    particles.mass[p] = material.density * volume;
     particles.density[p] = material.density;
     particles.stress[p] = Mat3::Zero();
     particles.strain[p] = Mat3::Zero();

@@ -16,6 +16,9 @@ namespace duet {
 /// when the centre lies inside the body's outline (point_in_polygon; a centre exactly on an edge
 /// goes by its half-open rule). Each particle gets volume dp^2, mass rho dp^2 (kg/m), density rho,
 /// the body's initial velocity, zero stress and strain, and its body and material indices.
+/// In an axisymmetric scene (x = r) a sample of area A stands for its ring: volume 2 pi r A and
+/// mass rho 2 pi r A (kg), r the sample's centre (Pappus: exact for the square lattice's cells and
+/// the polar lattice's annulus sectors, whose centroids lie at their centres' r to O(dp^2 / r)).
 ///
 /// A polygon edge that cuts cells: the midpoint rule. A cell belongs wholly to the body when its
 /// centre does, so the cells along a slanted edge trade the parts they lose for those they gain;

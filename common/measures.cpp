@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <stdexcept>
 
 #include "common/geometry.hpp"
@@ -117,6 +118,19 @@ Vec2 material_point_displacement(const Particles& particles, int body, const Vec
   return fit.row(0).transpose();
 }
 
+double wall_vector_area(const std::vector<Vec2>& points, Formulation formulation) {
+  if (formulation == Formulation::plane_strain) return (points.back() - points.front()).norm();
+  // Axisymmetric: segment i sweeps a cone frustum whose vector area is 2 pi r_mid (dz, -dr)
+  // (Pappus; exact, r linear along the segment)
+  Vec2 area = Vec2::Zero();
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    const Vec2 d = points[i + 1] - points[i];
+    const double r_mid = 0.5 * (points[i].x() + points[i + 1].x());
+    area += 2.0 * std::numbers::pi * r_mid * Vec2(d.y(), -d.x());
+  }
+  return area.norm();
+}
+
 double evaluate_measure(const Measure& measure, const Scene& scene, const Particles& particles,
                         const std::vector<Reaction>& reactions, double time) {
   double value = kNaN;
@@ -159,8 +173,8 @@ double evaluate_measure(const Measure& measure, const Scene& scene, const Partic
       const Wall* wall = wall_named(scene, measure.target);
       if (!wall) break;
       const auto points = wall_points_at(*wall, time);
-      const double chord = (points.back() - points.front()).norm();
-      value = component_of(reaction_of(reactions, measure.target), measure.component) / chord;
+      value = component_of(reaction_of(reactions, measure.target), measure.component) /
+              wall_vector_area(points, scene.formulation);
       break;
     }
     case MeasureKind::period: {

@@ -13,6 +13,10 @@
 
 namespace duet {
 
+/// The divisor of a wall_stress measure for the wall polyline `points`: its chord in plane strain,
+/// the magnitude of the vector area it sweeps about the axis in an axisymmetric scene.
+double wall_vector_area(const std::vector<Vec2>& points, Formulation formulation);
+
 /// Instantaneous raw value of one measure for the current state (see Measure in
 /// common/scene.hpp), before divide_by and scale. For `period` it is the velocity of the body's
 /// centre of mass along the component, from which the recorder derives the period.

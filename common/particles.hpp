@@ -46,9 +46,10 @@ struct Particles {
   std::vector<Vec2> position;      // m
   std::vector<Vec2> velocity;      // m/s
   std::vector<Vec2> displacement;  // m, from the initial position
-  // Mass and volume (per unit thickness in plane strain).
-  std::vector<double> mass;     // kg/m
-  std::vector<double> volume;   // m^2
+  // Mass and volume: per metre of thickness in plane strain; of the ring about the axis in an
+  // axisymmetric scene (Scene::formulation).
+  std::vector<double> mass;     // kg/m (plane strain), kg (axisymmetric)
+  std::vector<double> volume;   // m^2 (plane strain), m^3 (axisymmetric)
   std::vector<double> density;  // kg/m^3
   // Mechanics.
   std::vector<Mat3> stress;  // Pa, tension positive

@@ -168,10 +168,15 @@ enum class MeasureAt { end, max, series, time, curve };
 ///    shrink with the spacing).
 ///  height: max y of the body.
 ///  max_displacement: largest particle displacement of the body (component x | y | magnitude).
-///  reaction: force of the soil on a wall or rigid body, component x | y | magnitude (N/m).
+///  reaction: force of the soil on a wall or rigid body, component x | y | magnitude (N/m; N of
+///    the whole circumference in an axisymmetric scene, the x component the sum of the radial
+///    forces).
 ///  wall_stress: that reaction divided by the chord (end-to-end length) of the wall's current
 ///    polyline; for a straight wall the chord is its length, and for a uniformly loaded curved
 ///    wall the resultant equals the pressure times the chord, so this is the mean pressure.
+///    Axisymmetric: divided by the magnitude of the vector area the polyline sweeps about the
+///    axis, sum 2 pi r_mid (dz, -dr) (the chord's counterpart: for a uniform pressure the reaction
+///    is the pressure times it, so magnitude is again the mean pressure).
 ///  displacement: of a wall or rigid body, integrated from its velocity schedule.
 ///  point_displacement: of the material point of the target body that starts at `point`
 ///    (component x | y, signed, or magnitude), from the particles that start within two spacings
@@ -330,6 +335,11 @@ struct SpfemImplicitOptions {
   bool newmark = false;
 };
 
+/// How the plane of the scene is read. Plane strain: x horizontal, y vertical, per metre of
+/// thickness. Axisymmetric: x = r (the axis is x = 0), y = z; a particle stands for the ring it
+/// sweeps about the axis (volume 2 pi r A, mass, forces and energies of the whole circumference).
+enum class Formulation { plane_strain, axisymmetric };
+
 struct Scene {
   std::string path;  // the file it came from
   std::string name;  // `name` key, default the file's stem
@@ -337,6 +347,7 @@ struct Scene {
   double spacing = 0.0;         // m, particle spacing dp
   Vec2 gravity = Vec2::Zero();  // m/s^2, default zero: a scene says it
   bool confined = false;        // every body must be enclosed by walls and rigid bodies
+  Formulation formulation = Formulation::plane_strain;
   std::vector<Material> materials;
   std::vector<Body> bodies;
   std::vector<Wall> walls;

@@ -17,6 +17,8 @@ std::vector<SceneKey> make_keys() {
       {"", "gravity", "[x, y]", "m/s^2", "[0.0, 0.0]", "body force per unit mass"},
       {"", "confined", "boolean", "", "false",
        "every body must lie inside the walls and rigid bodies (checked at load)"},
+      {"", "formulation", "string", "", "\"plane-strain\"",
+       "\"plane-strain\" (per metre) or \"axisymmetric\" (x = r, axis x = 0; whole circumference)"},
       {"", "time", "table", "", kReq, "[time]: end time and output interval"},
       {"", "domain", "table", "", "(bounding box + padding)",
        "[domain]: a particle leaving it fails the run"},

@@ -566,6 +566,7 @@ Scene read_scene(const toml::table& root, const SceneSource& source, const Mater
   scene.spacing = r.number("spacing", positive("a particle spacing (m)"));
   scene.gravity = r.vec2("gravity", Vec2::Zero());
   scene.confined = r.boolean("confined", false);
+  scene.formulation = read_named(r, "formulation", scene.formulation, kFormulationNames);
 
   SectionReader time = section("time", kTimeKeys);
   scene.time.end_time = time.number("end_time", positive("an end time (s)"));

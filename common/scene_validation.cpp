@@ -138,6 +138,43 @@ class Checker {
     }
   }
 
+  /// Axisymmetric scenes: the bodies on the side x >= 0 of the axis (a wall or rigid body may
+  /// reach across it: no particle goes there), gravity along it, and a body
+  /// that reaches the axis held on it by a symmetry wall (u_r = 0 at r = 0; the particles nearest
+  /// the axis stand dp / 2 off it, and only the hoop stiffness would otherwise keep them there).
+  void axisymmetric_half_plane() const {
+    if (scene_.formulation != Formulation::axisymmetric) return;
+    if (scene_.gravity.x() != 0.0) {
+      fail("gravity",
+           "has a radial component " + std::to_string(scene_.gravity.x()) +
+               " m/s^2 in an axisymmetric scene",
+           "gravity along the axis, [0.0, g]");
+    }
+    const double tolerance = 1e-9 * (scene_.domain.max - scene_.domain.min).norm();
+    const auto left_of_axis = [&](const std::vector<Vec2>& outline, const std::string& key) {
+      for (const Vec2& p : outline) {
+        if (p.x() < -tolerance) {
+          fail(key, "the point " + point_text(p) + " lies at r = x < 0",
+               "an axisymmetric scene drawn at x = r >= 0 (the axis is x = 0)");
+        }
+      }
+    };
+    for (const Body& b : scene_.bodies) left_of_axis(b.outline, "body." + b.name);
+    bool axis_wall = false;
+    for (const Wall& w : scene_.walls) {
+      bool on_axis = w.condition == WallCondition::symmetry && !w.radial;
+      for (const Vec2& p : w.points) on_axis = on_axis && std::abs(p.x()) <= tolerance;
+      axis_wall = axis_wall || on_axis;
+    }
+    for (const Body& b : scene_.bodies) {
+      if (b.min.x() < scene_.spacing && !axis_wall) {
+        fail("body." + b.name,
+             "reaches the axis (x = " + length_text(b.min.x()) + ") with no symmetry wall along it",
+             "a wall on x = 0 with condition = \"symmetry\" (points = [[0.0, y0], [0.0, y1]])");
+      }
+    }
+  }
+
   void no_overlaps() const {
     const auto& bodies = scene_.bodies;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -410,6 +447,7 @@ void validate_scene(const Scene& scene, const toml::table& root, const SceneSour
   const Checker check(scene, root, source);
   check.bodies_inside_domain();
   check.bodies_resolved();
+  check.axisymmetric_half_plane();
   check.no_overlaps();
   check.walls_outside_bodies();
   check.bodies_on_soil_side();

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -59,7 +60,13 @@ double stiffening(const constitutive::ElasticModuli& e, const Mat3& stress) {
 }  // namespace
 
 ExplicitSolver::ExplicitSolver(EspfemSetup setup)
-    : setup_(std::move(setup)), discretisation_(setup_.options, setup_.spacing, setup_.boundaries) {
+    : setup_(std::move(setup)),
+      discretisation_(setup_.options, setup_.spacing, setup_.boundaries, setup_.axisymmetric) {
+  if (setup_.axisymmetric && setup_.options.stiffness_stabilisation > 0.0) {
+    throw InputError(
+        "spfem.stiffness_stabilisation: its energy is per metre of a plane mesh; an axisymmetric "
+        "scene runs without it");
+  }
   const duet::SpfemOptions& o = setup_.options;
   if (!(o.time_step_safety > 0.0)) throw InputError("spfem.time_step_safety must be > 0");
   if (!(o.stiffness_stabilisation >= 0.0)) {
@@ -83,6 +90,7 @@ void ExplicitSolver::initialise(Particles& particles) {
   discretisation_.initialise(particles.position);
   boundary_force_.assign(setup_.boundaries.size(), Vec2::Zero());
   velocity_gradient_.assign(n, Mat2::Zero());
+  hoop_rate_.assign(setup_.axisymmetric ? n : 0, 0.0);
   wave_speed_.assign(n, 0.0);
   block_modulus_.assign(n, 0.0);
   stiffening_.assign(n, 0.0);
@@ -156,7 +164,11 @@ double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
   // mass, and sqrt(A_k) / c (the former l_min / c) cut dt by the ratio of the two. Two O(nnz)
   // passes, no allocation once sized: w_k = A_k M_k sum_m |b_km| per cell, then each row l
   // gathers w_k |b_kl| through the transpose map.
+  // Axisymmetric: V_k = 2 pi r_k A_k for A_k, and node k's strain has the hoop row
+  // delta u_r,k / r_k besides, so |B_km| <= |b_km| + delta_km / r_k: w_k = V_k M_k (sum_m |b_km|
+  // + 1 / r_k), and row l gathers w_l / r_l besides.
   const std::size_t n = cells().area.size();
+  const bool ring = !cells().ring.empty();
   cell_weight_.resize(n);
   gradient_norm_.resize(cells().gradient.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
@@ -167,7 +179,8 @@ double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
       gradient_norm_[static_cast<std::size_t>(e)] = norm;
       row_sum += norm;
     }
-    cell_weight_[k] = cells().area[k] * block_modulus_[k] * row_sum;
+    const double hoop = ring ? 1.0 / particles.position[k].x() : 0.0;
+    cell_weight_[k] = cell_volume(cells(), k) * block_modulus_[k] * (row_sum + hoop);
   }
   double omega_squared = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : omega_squared) if (n > kParallelMin)
@@ -179,6 +192,7 @@ double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
       const auto kl = static_cast<std::size_t>(cells().transpose[static_cast<std::size_t>(e)]);
       bound += cell_weight_[k] * gradient_norm_[kl];
     }
+    if (ring) bound += cell_weight_[l] / particles.position[l].x();
     omega_squared = std::max(omega_squared, std::abs(bound) / particles.mass[l]);
   }
   if (!(omega_squared > 0.0)) {
@@ -234,7 +248,7 @@ void ExplicitSolver::update_stress(Particles& particles, double dt) {
     const constitutive::Model& model = *setup_.models[m];
     const std::span<double> internal(particles.internal.of(i), n_internal_[m]);
     if (cells().area[i] > 0.0) {
-      const Mat3 l = embed(velocity_gradient_[i]);
+      const Mat3 l = full_velocity_gradient(i);
       const Mat3 d = sym(l);
       // Zhang 2018 slides, explicit cycle step 5: sigma_dot = H(eps_dot, kappa), Jaumann rate
       constitutive::update_stress(model, d * dt, skew(l) * dt, particles.stress[i], internal);
@@ -284,6 +298,11 @@ void ExplicitSolver::add_stabilisation(const Particles& particles) {
     const double speed = (wave_speed_[a] + wave_speed_[b] + wave_speed_[c]) / 3.0;
     const double length = std::sqrt(2.0 * std::abs(area[e]));
     triangle_stress_[e] = s * rho * speed * length * (sym2(l_e) - mean_smoothed);
+    // Axisymmetric: the triangle's ring 2 pi r at its centroid weighs its power (Pappus); any
+    // positive weight keeps the force zero on a linear velocity field
+    if (!cells().ring.empty()) {
+      triangle_stress_[e] *= 2.0 * std::numbers::pi * (x[a].x() + x[b].x() + x[c].x()) / 3.0;
+    }
   }
   const std::size_t n = particles.size();
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
@@ -302,9 +321,11 @@ void ExplicitSolver::add_stabilisation(const Particles& particles) {
       s_l += area[e] / 3.0 * triangle_stress_[e];
     }
     stabilisation_force_[l] = f;
-    scratch_stress_[l] = cells().area[l] > 0.0 ? embed(s_l / cells().area[l]) : Mat3::Zero();
+    scratch_stress_[l] =
+        cells().area[l] > 0.0 ? embed(s_l / cell_volume(cells(), l)) : Mat3::Zero();
   }
-  // sum_k S_k b_kl = sum_k A_k (S_k / A_k) b_kl: the smoothed internal-force operator
+  // sum_k S_k b_kl = sum_k V_k (S_k / V_k) b_kl: the smoothed internal-force operator (S_k has no
+  // hoop component, so it adds no hoop force)
   internal_forces(cells(), scratch_stress_, scratch_force_);
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::size_t l = 0; l < n; ++l) stabilisation_force_[l] -= scratch_force_[l];
@@ -324,9 +345,10 @@ void ExplicitSolver::assemble_forces(const Particles& particles) {
       const double area = cells().area[k];
       if (area > 0.0) {
         const double eta = b1 * particles.density[k] * wave_speed_[k] * std::sqrt(area);
-        const double p = eta * velocity_gradient_[k].trace();
+        const double p = eta * full_velocity_gradient(k).trace();
         viscous_stress_[k](0, 0) += p;
         viscous_stress_[k](1, 1) += p;
+        if (!hoop_rate_.empty()) viscous_stress_[k](2, 2) += p;  // the hoop force carries it
       }
     }
   }
@@ -448,6 +470,7 @@ void ExplicitSolver::insert_nodes(Particles& particles) {
     mean(stiffening_, a);
   }
   velocity_gradient_.resize(n, Mat2::Zero());
+  if (!hoop_rate_.empty()) hoop_rate_.resize(n, 0.0);
   internal_force_.resize(n, Vec2::Zero());
   stabilisation_force_.resize(n, Vec2::Zero());
   stiffness_force_.resize(n, Vec2::Zero());
@@ -464,7 +487,7 @@ double ExplicitSolver::energy(const Particles& particles) const {
   for (std::size_t i = 0; i < n; ++i) {
     e += 0.5 * particles.mass[i] * particles.velocity[i].squaredNorm();
     if (i < cells().area.size()) {
-      e += 0.5 * cells().area[i] * contract(particles.stress[i], particles.strain[i]);
+      e += 0.5 * cell_volume(cells(), i) * contract(particles.stress[i], particles.strain[i]);
     }
   }
   return e;
@@ -484,6 +507,13 @@ double ExplicitSolver::step(Particles& particles, double time) {
     // Zhang 2018 slides, explicit cycle step 4: smoothed strain (rate) of the nodes, before dt,
     // which the stress increment it gives also bounds
     smoothed_velocity_gradients(cells(), particles.velocity, velocity_gradient_);
+    if (!hoop_rate_.empty()) {
+      // Axisymmetric: the hoop rate of stretching v_r / r at the node (its ring's circumference
+      // grows with its radius); the nodes stand off the axis (NodalDiscretisation::fill_ring)
+      for (std::size_t k = 0; k < hoop_rate_.size(); ++k) {
+        hoop_rate_[k] = particles.velocity[k].x() / particles.position[k].x();
+      }
+    }
     dt = time_step(particles);
     update_stress(particles, dt);
   }

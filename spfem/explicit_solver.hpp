@@ -51,6 +51,7 @@ struct EspfemSetup {
   Vec2 gravity = Vec2::Zero();                               // m/s^2
   std::vector<std::unique_ptr<constitutive::Model>> models;  // by material index
   std::vector<NodeBoundary> boundaries;                      // walls, then rigid bodies
+  bool axisymmetric = false;  // x = r about the axis x = 0 (Scene::formulation)
 };
 
 /// The step's counters; the mesh's are in NodalDiscretisation::counters().
@@ -110,6 +111,14 @@ class ExplicitSolver {
   void restart_point() { discretisation_.restart_point(); }
 
  private:
+  /// Node k's velocity gradient in 3-D: the smoothed in-plane L_k and, axisymmetric, the hoop
+  /// rate v_r,k / r_k in the out-of-plane (theta theta) slot.
+  Mat3 full_velocity_gradient(std::size_t k) const {
+    Mat3 l = Mat3::Zero();
+    l.topLeftCorner<2, 2>() = velocity_gradient_[k];
+    if (!hoop_rate_.empty()) l(2, 2) = hoop_rate_[k];
+    return l;
+  }
   double time_step(const Particles& particles);
   double cell_size_time_step(const Particles& particles) const;
   double gershgorin_time_step(const Particles& particles);
@@ -126,6 +135,7 @@ class ExplicitSolver {
   std::vector<std::size_t> n_internal_;  // per material
 
   std::vector<Mat2> velocity_gradient_;
+  std::vector<double> hoop_rate_;   // axisymmetric: v_r,k / r_k (1/s); empty in plane strain
   std::vector<double> wave_speed_;  // per node, m/s
   std::vector<double>
       block_modulus_;  // per node: M = |lambda| + 2 G or the model's tangent bound (Pa)

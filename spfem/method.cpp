@@ -36,6 +36,7 @@ Setup make_setup(const Scene& scene) {
   setup.options = scene.spfem;
   setup.spacing = scene.spacing;
   setup.gravity = scene.gravity;
+  setup.axisymmetric = scene.formulation == Formulation::axisymmetric;
   setup.models = constitutive::make_scene_models(scene, loading_strength_factor(scene));
   for (const Wall& w : scene.walls) {
     NodeBoundary b;
@@ -69,6 +70,11 @@ Setup make_setup(const Scene& scene) {
 }
 
 IspfemSetup make_implicit_setup(const Scene& scene) {
+  if (scene.formulation == Formulation::axisymmetric) {
+    throw InputError(
+        "formulation = \"axisymmetric\": the implicit SPFEM is plane strain only "
+        "(its tangent has no hoop terms); run this scene through espfem");
+  }
   // Quasi-static: a body set moving cannot be honoured, and a run would "complete" standing
   // still (bar.toml: period NaN)
   for (const Body& b : scene.bodies) {

@@ -2,15 +2,21 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "common/input_error.hpp"
+#include "common/solver.hpp"
 
 namespace duet::spfem {
 
 NodalDiscretisation::NodalDiscretisation(const duet::SpfemOptions& options, double spacing,
-                                         std::vector<NodeBoundary> boundaries)
-    : options_(options), spacing_(spacing), boundaries_(std::move(boundaries)) {
+                                         std::vector<NodeBoundary> boundaries, bool axisymmetric)
+    : options_(options),
+      axisymmetric_(axisymmetric),
+      spacing_(spacing),
+      boundaries_(std::move(boundaries)) {
   if (!(spacing_ > 0.0)) throw InputError("spfem: particle spacing must be > 0 m");
   if (!(options_.alpha_factor > 0.0)) throw InputError("spfem.alpha_factor must be > 0");
 }
@@ -84,6 +90,7 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
   } else {
     refill_smoothing_cells(mesh_, x, cells_, layer, strips);  // same triangles: same rows
   }
+  fill_ring(x);
   if (remesh && o.remesh == Remesh::angle) {
     angle = arm_remesh_trigger(mesh_, x, o.remesh_angle, o.remesh_angle_fraction, remesh_trigger_);
   } else if (remesh && !mesh_.triangles.empty()) {
@@ -96,6 +103,26 @@ bool NodalDiscretisation::update(const std::vector<Vec2>& x) {
 void NodalDiscretisation::refill(const std::vector<Vec2>& x) {
   const double layer = layer_depth();
   refill_smoothing_cells(mesh_, x, cells_, layer, layer > 0.0 ? &wall_strips_ : nullptr);
+  fill_ring(x);
+}
+
+void NodalDiscretisation::fill_ring(const std::vector<Vec2>& x) {
+  if (!axisymmetric_) {
+    cells_.ring.clear();
+    return;
+  }
+  cells_.ring.resize(x.size());
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    // A node's ring 2 pi r; one on or across the axis has none (the symmetry wall on x = 0 holds
+    // the nodes dp / 2 off it)
+    if (!(x[k].x() > 0.0)) {
+      throw NumericalFailure("spfem: node " + std::to_string(k) +
+                             " reached the axis (r = " + std::to_string(x[k].x()) +
+                             " m): an axisymmetric scene needs a "
+                             "symmetry wall along x = 0 that holds its nodes off it");
+    }
+    cells_.ring[k] = 2.0 * std::numbers::pi * x[k].x();
+  }
 }
 
 }  // namespace duet::spfem

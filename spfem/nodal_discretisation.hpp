@@ -37,8 +37,10 @@ class NodalDiscretisation {
  public:
   /// `options`: the scene's [spfem] (alpha_factor, remesh, remesh_angle(_fraction),
   /// boundary_layer); `spacing` dp (m); walls then rigid bodies.
+  /// `axisymmetric`: x = r about the axis x = 0; the cells carry their rings 2 pi r_k
+  /// (SmoothingCells::ring).
   NodalDiscretisation(const duet::SpfemOptions& options, double spacing,
-                      std::vector<NodeBoundary> boundaries);
+                      std::vector<NodeBoundary> boundaries, bool axisymmetric = false);
 
   /// Orients the boundaries on the initial node positions; forgets any mesh and attachment.
   void initialise(const std::vector<Vec2>& positions);
@@ -71,6 +73,7 @@ class NodalDiscretisation {
   }
 
   const duet::SpfemOptions& options() const { return options_; }
+  bool axisymmetric() const { return axisymmetric_; }
   double spacing() const { return spacing_; }
   /// Depth of the boundary layer (dp / 2 with spfem.boundary_layer, else 0), m.
   double layer_depth() const { return options_.boundary_layer ? 0.5 * spacing_ : 0.0; }
@@ -95,7 +98,11 @@ class NodalDiscretisation {
   }
 
  private:
+  /// Axisymmetric: cells_.ring = 2 pi x_k at `x` (throws NumericalFailure for a node at x <= 0).
+  void fill_ring(const std::vector<Vec2>& x);
+
   duet::SpfemOptions options_;
+  bool axisymmetric_ = false;
   double spacing_ = 0.0;
   std::vector<NodeBoundary> boundaries_;
   std::vector<BoundaryGeometry> geometry_;

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 
 namespace duet::spfem {
 namespace {
@@ -320,8 +321,10 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
       const Index k = cells.column[entry];
       const Vec2& b_kl = cells.gradient[cells.transpose[entry]];
       // Zhang 2018 slides, "Strain smoothing technique": F_int = sum_k B_L^(k)T sigma_k A^(k)
-      f.noalias() += cells.area[k] * (stress[k].topLeftCorner<2, 2>() * b_kl);
+      f.noalias() += cell_volume(cells, std::size_t(k)) * (stress[k].topLeftCorner<2, 2>() * b_kl);
     }
+    // Axisymmetric: the hoop stress's share, V_l sigma_tt,l / r_l
+    if (!cells.ring.empty()) f.x() += 2.0 * std::numbers::pi * cells.area[l] * stress[l](2, 2);
     force[l] = f;
   }
 }

@@ -26,7 +26,11 @@ struct TriangleTerms {
 /// Smoothed gradients in compressed rows: row k lists the nodes l that share a triangle with k
 /// (k itself included) and b_kl = smoothed dN_l/dx at node k.
 struct SmoothingCells {
-  std::vector<double> area;             // A_k (m^2); 0 for a node in no triangle
+  std::vector<double> area;  // A_k (m^2); 0 for a node in no triangle
+  // Axisymmetric scenes: the ring 2 pi r_k of each node, so that the cell's volume is
+  // V_k = 2 pi r_k A_k (NodalDiscretisation fills it); empty in plane strain (V_k = A_k, per
+  // metre).
+  std::vector<double> ring;
   std::vector<std::int32_t> offset;     // n_nodes + 1 row starts
   std::vector<std::int32_t> column;     // node l of each entry
   std::vector<Vec2> gradient;           // b_kl (1/m)
@@ -58,6 +62,12 @@ struct SmoothingCells {
   bool frozen_branches = false;
   std::vector<std::int32_t> row_scratch;  // the build's rows before packing
 };
+
+/// V_k: the volume node k's cell stands for, A_k per metre in plane strain, 2 pi r_k A_k in an
+/// axisymmetric scene.
+inline double cell_volume(const SmoothingCells& cells, std::size_t k) {
+  return cells.ring.empty() ? cells.area[k] : cells.ring[k] * cells.area[k];
+}
 
 /// Position of `node` among the `length` entries of `row` (a row's columns hold each node once),
 /// `length` when absent. No early exit: rows are short (about seven entries) and a data-dependent
@@ -106,8 +116,12 @@ void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, s
 void smoothed_velocity_gradients(const SmoothingCells& cells, const std::vector<Vec2>& velocity,
                                  std::vector<Mat2>& gradient);
 
-/// F_int,l = sum_k A_k sigma_k b_kl (in-plane part of sigma), gathered per node l without races;
-/// the equation of motion is m a = F_ext - F_int.
+/// F_int,l = sum_k V_k sigma_k b_kl (in-plane part of sigma), gathered per node l without races;
+/// the equation of motion is m a = F_ext - F_int. Axisymmetric (cells.ring set), the virtual work
+/// sum_k V_k sigma_k : delta eps_k with the hoop strain delta eps_tt,k = delta u_r,k / r_k adds
+/// the hoop force V_k sigma_tt,k / r_k = 2 pi A_k sigma_tt,k to node k's radial (x) component; a
+/// uniform hydrostatic stress is then in equilibrium at every interior node exactly, as
+/// sum_k r_k A_k b_kl = int r grad N_l dA = -A_l e_r there (tests/spfem/axisymmetric_test.cpp).
 void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stress,
                      std::vector<Vec2>& force);
 

@@ -296,9 +296,9 @@ void wall_point_forces(const SmoothingCells& cells, const std::vector<Mat3>& str
   const std::size_t n = cells.wall_offset.size() - 1;
   for (std::size_t k = 0; k < n; ++k) {
     for (Index entry = cells.wall_offset[k]; entry < cells.wall_offset[k + 1]; ++entry) {
-      // F_w = sum_k A_k sigma_k c_kw, as F_int,l = sum_k A_k sigma_k b_kl
+      // F_w = sum_k V_k sigma_k c_kw, as F_int,l = sum_k V_k sigma_k b_kl
       force[std::size_t(cells.wall_column[entry])] +=
-          cells.area[k] * (stress[k].topLeftCorner<2, 2>() * cells.wall_gradient[entry]);
+          cell_volume(cells, k) * (stress[k].topLeftCorner<2, 2>() * cells.wall_gradient[entry]);
     }
   }
 }

@@ -29,6 +29,11 @@ WallVelocity wall_velocity(const Wall& wall) {
 }
 
 SphSetup make_setup(const Scene& scene) {
+  if (scene.formulation == Formulation::axisymmetric) {
+    throw InputError(
+        "formulation = \"axisymmetric\": the SPH solver is plane strain only; run "
+        "this scene through espfem");
+  }
   if (scene.sph.wall_treatment != "dummy") {
     throw InputError("sph.wall_treatment = \"" + scene.sph.wall_treatment +
                      "\": the SPH solver implements \"dummy\" only");

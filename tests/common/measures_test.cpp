@@ -10,6 +10,24 @@
 namespace duet {
 namespace {
 
+TEST(Measures, AnAxisymmetricWallStressDividesByTheVectorAreaTheWallSweeps) {
+  // A flat disc of radius R swept by the segment (0, z) - (R, z): pi R^2, along the axis
+  EXPECT_NEAR(wall_vector_area({Vec2(0.0, 1.0), Vec2(2.0, 1.0)}, Formulation::axisymmetric),
+              std::numbers::pi * 4.0, 1e-12);
+  // A hemisphere of radius a (a quarter arc from the equator to the axis): the vector area is
+  // (int n_r dA, int n_z dA) = (pi^2 a^2 / 2, pi a^2), so a uniform pressure p on it gives a
+  // reaction of p times its magnitude; 2,000 chords approach it to O(1 / n^2)
+  std::vector<Vec2> arc;
+  for (int i = 0; i <= 2000; ++i) {
+    const double angle = 0.5 * std::numbers::pi * i / 2000.0;
+    arc.emplace_back(std::cos(angle), std::sin(angle));
+  }
+  const double hemisphere = std::numbers::pi * std::hypot(0.5 * std::numbers::pi, 1.0);
+  EXPECT_NEAR(wall_vector_area(arc, Formulation::axisymmetric), hemisphere, 1e-6 * hemisphere);
+  // Plane strain: the chord
+  EXPECT_NEAR(wall_vector_area(arc, Formulation::plane_strain), std::sqrt(2.0), 1e-12);
+}
+
 TEST(PeriodFromZeroCrossings, RecoversThePeriodOfASampledSine) {
   const double period = 0.04;
   std::vector<double> t, v;

@@ -16,6 +16,8 @@
 #include "benchmarks/scene_input.hpp"
 #include "common/enum_names.hpp"
 #include "common/input_error.hpp"
+#include "common/lattice.hpp"
+#include "common/particles.hpp"
 #include "common/standing_faces.hpp"
 #include "constitutive/registry.hpp"
 #include "tests/common/column_scene.hpp"
@@ -51,6 +53,7 @@ void expect_names_round_trip(const EnumName<Enum> (&table)[N]) {
 }
 
 TEST(SceneLoader, EveryEnumNameReadsBackAsItself) {
+  expect_names_round_trip(kFormulationNames);
   expect_names_round_trip(kMeasureKindNames);
   expect_names_round_trip(kMeasureAtNames);
   expect_names_round_trip(kInitialStressKindNames);
@@ -183,6 +186,37 @@ TEST(SceneLoader, MethodDefaultsAreBuisWallsAndTheGershgorinStep) {
   EXPECT_EQ(peng.sph.dummy_velocity, SphDummyVelocity::wall);
   EXPECT_EQ(peng.sph.wall_stress, SphWallStress::sigma_max);
   EXPECT_EQ(peng.spfem.time_step, SpfemTimeStep::cell_size);
+}
+
+TEST(SceneLoader, AnAxisymmetricSceneLiesRightOfTheAxisHeldOnItAndSamplesRings) {
+  const std::string axisymmetric = "formulation = \"axisymmetric\"\n" + kScene;
+  const std::string axis =
+      "\n[wall.axis]\npoints = [[0.0, 0.0], [0.0, 0.2]]\n"
+      "condition = \"symmetry\"\n";
+  // The column reaches the axis: without a symmetry wall on it nothing holds u_r = 0 there
+  EXPECT_NE(refusal(axisymmetric).find("reaches the axis (x = 0 m) with no symmetry wall"),
+            std::string::npos)
+      << refusal(axisymmetric);
+  EXPECT_EQ(refusal(axisymmetric + axis), "");
+  EXPECT_NE(refusal(axisymmetric + axis, {"body.column.min=[-0.1, 0.0]"}).find("at r = x < 0"),
+            std::string::npos);
+  EXPECT_NE(refusal(axisymmetric + axis, {"gravity=[1.0, -9.81]"}).find("radial component"),
+            std::string::npos);
+  // Each particle stands for its ring: mass rho 2 pi r dp^2 (kg), r its centre's x
+  const Scene scene = load_scene_from_string(axisymmetric + axis, "scene.toml");
+  EXPECT_EQ(scene.formulation, Formulation::axisymmetric);
+  EXPECT_EQ(load_scene_from_string(kScene, "scene.toml").formulation, Formulation::plane_strain);
+  Particles particles;
+  sample_body(scene, 0, particles);
+  ASSERT_GT(particles.size(), 0u);
+  double mass = 0.0;
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const double ring = 2.0 * std::numbers::pi * particles.position[p].x();
+    EXPECT_NEAR(particles.mass[p], 1800.0 * ring * 1e-4, 1e-12) << p;
+    mass += particles.mass[p];
+  }
+  // The column r <= 0.2 m, 0.1 m tall: rho pi R^2 H, exactly (Pappus on the lattice's cells)
+  EXPECT_NEAR(mass, 1800.0 * std::numbers::pi * 0.04 * 0.1, 1e-9);
 }
 
 TEST(SceneLoader, UnknownDummyVelocityIsRefusedNamingTheChoices) {
