@@ -121,11 +121,17 @@ Vec2 material_point_displacement(const Particles& particles, int body, const Vec
 double wall_vector_area(const std::vector<Vec2>& points, Formulation formulation) {
   if (formulation == Formulation::plane_strain) return (points.back() - points.front()).norm();
   // Axisymmetric: segment i sweeps a cone frustum whose vector area is 2 pi r_mid (dz, -dr)
-  // (Pappus; exact, r linear along the segment)
+  // (Pappus; exact, r linear along the segment); the part of a wall drawn across the axis
+  // (x < 0) sweeps nothing
   Vec2 area = Vec2::Zero();
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
-    const Vec2 d = points[i + 1] - points[i];
-    const double r_mid = 0.5 * (points[i].x() + points[i + 1].x());
+    Vec2 a = points[i];
+    Vec2 b = points[i + 1];
+    if (a.x() <= 0.0 && b.x() <= 0.0) continue;
+    if (a.x() < 0.0) a += (b - a) * (a.x() / (a.x() - b.x()));
+    if (b.x() < 0.0) b += (a - b) * (b.x() / (b.x() - a.x()));
+    const Vec2 d = b - a;
+    const double r_mid = 0.5 * (a.x() + b.x());
     area += 2.0 * std::numbers::pi * r_mid * Vec2(d.y(), -d.x());
   }
   return area.norm();

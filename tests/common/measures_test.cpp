@@ -24,6 +24,9 @@ TEST(Measures, AnAxisymmetricWallStressDividesByTheVectorAreaTheWallSweeps) {
   }
   const double hemisphere = std::numbers::pi * std::hypot(0.5 * std::numbers::pi, 1.0);
   EXPECT_NEAR(wall_vector_area(arc, Formulation::axisymmetric), hemisphere, 1e-6 * hemisphere);
+  // A wall drawn across the axis sweeps only its part at r >= 0
+  EXPECT_NEAR(wall_vector_area({Vec2(1.5, 1.0), Vec2(-0.1, 1.0)}, Formulation::axisymmetric),
+              std::numbers::pi * 2.25, 1e-12);
   // Plane strain: the chord
   EXPECT_NEAR(wall_vector_area(arc, Formulation::plane_strain), std::sqrt(2.0), 1e-12);
 }
