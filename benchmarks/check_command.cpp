@@ -79,6 +79,10 @@ void print_scene(const Scene& scene, std::ostream& out) {
       << "  spacing " << format_number(scene.spacing) << " m, end time "
       << format_number(scene.time.end_time) << " s, a frame every "
       << format_number(scene.time.output_interval) << " s (" << with_commas(frames) << " frames)\n";
+  if (scene.formulation == Formulation::axisymmetric) {
+    out << "  axisymmetric: x = r about the axis x = 0; masses, reactions and energies of the "
+           "whole circumference\n";
+  }
   const bool huge = estimated_particles(scene) > 5.0e7;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const Body& body = scene.bodies[b];

@@ -22,6 +22,7 @@
 #include "benchmarks/run_warnings.hpp"
 #include "benchmarks/thread_choice.hpp"
 #include "common/energy_budget.hpp"
+#include "common/enum_names.hpp"
 #include "common/h5_writer.hpp"
 #include "common/input_error.hpp"
 #include "common/interrupt.hpp"
@@ -493,6 +494,8 @@ Json Run::metrics_json(const std::string& status) {
   metrics["scene"] = scene_.name;
   metrics["method"] = method_.name;
   metrics["spacing"] = scene_.spacing;
+  // How the plane is read: per metre (plane strain) or the whole circumference (axisymmetric)
+  metrics["formulation"] = std::string(name_of(scene_.formulation, kFormulationNames));
   metrics["particles"] = static_cast<long>(particles_.size());
   metrics["steps"] = steps_;
   metrics["wall_seconds"] = wall_before_ + wall;  // a resumed run: both parts
