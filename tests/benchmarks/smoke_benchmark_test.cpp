@@ -174,7 +174,7 @@ const std::vector<SmokeCase> kCases = {
      "q/c_u against Eason & Shield's 6.05 from w/B 0.02 to 0.05: worst +126 % (tolerance 5 %), "
      "mean 8.27 (+37 %); five nodes under the footing's radius and the contact force rings from "
      "5.4 to 13.7. At dp 0.1 the mean is 6.82 (+12.7 %), worst +34.5 % (RESULTS.md)"},
-    {"cavity-spherical", "espfem", 0.5, Outcome::outside, 0.5, "",
+    {"cavity-spherical", "espfem", 0.5, Outcome::outside, 0.55, "",
      "p/c_u +46 %, +28 %, +15 % at a/a0 1.2, 1.5, 2 against Hill's closed form (tolerance 10 %): "
      "at dp 0.35 +21 %, +12.5 %; the mean stress alternates from ring to ring as in the "
      "cylindrical cavity, and the soil by the axis carries more of it (RESULTS.md)"},
