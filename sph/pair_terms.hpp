@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <numbers>
 
 #include "common/scene.hpp"
 #include "common/tensor.hpp"
@@ -23,6 +24,14 @@ inline constexpr std::size_t kParallelMin = 2048;
 
 inline Mat2 in_plane(const Mat3& s) {
   return s.topLeftCorner<2, 2>();
+}
+
+/// Axisymmetric: the plane mass of a ring of mass m at radius r, m / (2 pi r) = rho A (its mass
+/// per radian of circumference per unit radius, the r-z plane's area density times its area A),
+/// with which the pair sums are those of plane SPH (Garcia-Senz et al. 2009: the r-z
+/// plane's SPH, its surface density 2 pi r rho read per radian and unit radius).
+inline double plane_mass(double ring_mass, double r) {
+  return ring_mass / (2.0 * std::numbers::pi * r);
 }
 
 /// What the pair loops read of particle j, in the solver's working order (soil sorted by cell,

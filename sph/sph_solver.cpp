@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <span>
 #include <stdexcept>
 
@@ -151,6 +152,7 @@ void SphSolver::initialise(Particles& particles) {
   acceleration_.assign(n, Vec2::Zero());
   external_force_.assign(n, Vec2::Zero());
   velocity_gradient_.assign(n, Mat2::Zero());
+  hoop_rate_.assign(setup_.axisymmetric ? n : 0, 0.0);
   density_rate_.assign(n, 0.0);
   wall_force_.assign(setup_.walls.size(), Vec2::Zero());
   wall_force_scratch_.assign(static_cast<std::size_t>(n_threads) * setup_.walls.size(),
@@ -194,6 +196,13 @@ struct SphSolver::ForcePass {
   // artificial stress needs W_ij and r as well, so with b > 0 everything is computed here.
   const double* cached_factor;
   std::size_t stride;
+  // By driver index: the particles' stress (the axisymmetric source terms read the hoop stress)
+  // and mass (plane strain: per metre, as in work_; axisymmetric: the ring's, by which a soil
+  // particle's push on a wall counts over the whole circumference, and by which a scene's load,
+  // a ring's force, is divided).
+  const Mat3* stress;
+  const double* mass;
+  bool ring;  // axisymmetric
 };
 
 void SphSolver::pair_loop(const Particles& particles) {
@@ -212,6 +221,9 @@ void SphSolver::pair_loop(const Particles& particles) {
       .parallel = particles.size() >= kParallelMin,
       .cached_factor = gradient_cached_ && b == 0.0 ? gradient_factor_.data() : nullptr,
       .stride = neighbours_.stride(),
+      .stress = particles.stress.data(),
+      .mass = particles.mass.data(),
+      .ring = setup_.axisymmetric,
   };
   std::fill(wall_force_scratch_.begin(), wall_force_scratch_.end(), Vec2::Zero());
   const int team = soil_pair_pass(pass);
@@ -286,8 +298,9 @@ void SphSolver::soil_pair_row(std::size_t k, const ForcePass& pass, PairSum* sum
         sj.take_min_normal_stress(pi);
       }
     } else {
-      // A ghost acts on i alone; minus its force is the reaction on its free-slip wall.
-      wall_force[work_wall_[j]] -= pi.m * pj.m * p.bracket_times_gradient();
+      // A ghost acts on i alone; minus its force is the reaction on its free-slip wall (of i's
+      // whole ring when axisymmetric: pass.mass; in plane strain the same number as pi.m).
+      wall_force[work_wall_[j]] -= pass.mass[order_[k]] * pj.m * p.bracket_times_gradient();
     }
   }
   sum[k] += s;
@@ -307,14 +320,29 @@ double SphSolver::particle_pass(const ForcePass& pass, std::size_t n_team) {
       for (std::size_t t = 1; t < n_team; ++t) s += pair_sum_[t * n + k];
       if (!neighbours_.late(k).empty()) dummy_pairs(k, pass, s, wall_force);
       const std::size_t i = order_[k];
-      // Peng 2015 eq 30: + g, and the scene's load
-      const Vec2 a = Vec2(s.ax, s.ay) + pass.gravity + external_force_[i] / work_[k].m;
+      // Peng 2015 eq 30: + g, and the scene's load (over the mass it acts on, the ring's when
+      // axisymmetric; in plane strain pass.mass[i] is work_[k].m)
+      Vec2 a = Vec2(s.ax, s.ay) + pass.gravity + external_force_[i] / pass.mass[i];
+      const PairData& pk = work_[k];
+      if (pass.ring) {
+        // Axisymmetric: the divergence of a stress in cylindrical coordinates without swirl has,
+        // besides the r-z plane's (the pair sums), (sigma_rr - sigma_tt) / r radially and
+        // sigma_rz / r axially (Garcia-Senz et al. 2009: the source terms of the momentum
+        // equation in the r-z plane; the pressure there, the stress tensor here). The
+        // particle's own stress: both vanish on the axis with the hoop stress's difference and
+        // sigma_rz, and the particles stand at r >= dp / 2 off it (sph/README.md, "Axisymmetric").
+        const Mat3& sigma = pass.stress[i];
+        const double inv_rho_r = 1.0 / (pk.rho * pk.x);
+        a.x() += (sigma(0, 0) - sigma(2, 2)) * inv_rho_r;
+        a.y() += sigma(0, 1) * inv_rho_r;
+      }
       acceleration_[i] = a;
       if (pass.rates) {
         Mat2 l;
         l << s.lxx, s.lxy, s.lyx, s.lyy;
         velocity_gradient_[i] = l;
         density_rate_[i] = s.rho_rate;
+        if (pass.ring) add_hoop_rate(i, pk);
       }
       const double a2 = a.squaredNorm();
       a_max2 = std::max(a_max2, std::isfinite(a2) ? a2 : std::numeric_limits<double>::infinity());
@@ -347,6 +375,7 @@ void SphSolver::dummy_pairs(std::size_t k, const ForcePass& pass, PairSum& s,
     r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
   }
   const double m_dummy = rho_i * pass.dummy_volume;
+  const double m_reaction = pass.mass[order_[k]];  // plane strain: pi.m
   // The late part of row k follows its early part in the cache, as in the row.
   const double* late_factor = pass.cached_factor != nullptr ? pass.cached_factor + k * pass.stride +
                                                                   neighbours_.early(k).size()
@@ -356,8 +385,8 @@ void SphSolver::dummy_pairs(std::size_t k, const ForcePass& pass, PairSum& s,
     const double* cached = late_factor != nullptr ? late_factor + e : nullptr;
     if (!pass.terms.evaluate(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, cached, p)) return;
     s.add_force(p, m_dummy, pass.dummy_volume, 1.0, pass.rates);
-    // minus the dummy's force on i is the reaction on its wall
-    wall_force[wall] -= pi.m * m_dummy * p.bracket_times_gradient();
+    // minus the dummy's force on i is the reaction on its wall (of i's ring when axisymmetric)
+    wall_force[wall] -= m_reaction * m_dummy * p.bracket_times_gradient();
   };
   const auto late = neighbours_.late(k);
   if (!pass.extrapolated) {
@@ -427,7 +456,7 @@ void SphSolver::advance(Particles& particles, double dt) {
     const auto m = static_cast<std::size_t>(particles.material[i]);
     const constitutive::Model& model = *setup_.models[m];
     const std::span<double> internal(particles.internal.of(i), n_internal_[m]);
-    const Mat3 l = embed(velocity_gradient_[i]);
+    const Mat3 l = full_velocity_gradient(i);
     const Mat3 d = sym(l);   // Peng 2015 eq 22
     const Mat3 w = skew(l);  // Peng 2015 eq 23
     const Vec2* v_new = &particles.velocity[i];
@@ -517,6 +546,36 @@ void SphSolver::advance(Particles& particles, double dt) {
   previous_dt_ = dt;
 }
 
+Mat3 SphSolver::full_velocity_gradient(std::size_t i) const {
+  Mat3 l = embed(velocity_gradient_[i]);
+  // Axisymmetric: the out-of-plane slot is the hoop direction, its rate of stretching v_r / r
+  if (!hoop_rate_.empty()) l(2, 2) = hoop_rate_[i];
+  return l;
+}
+
+void SphSolver::add_hoop_rate(std::size_t i, const PairData& p) {
+  // Axisymmetric: the ring's circumference 2 pi r grows at 2 pi v_r, the hoop rate of stretching
+  // v_r / r (Garcia-Senz et al. 2009: the continuity equation's v_r / r term). It
+  // vanishes on the axis with v_r, and the particles stand at r >= dp / 2 off it.
+  const double hoop = p.vx / p.x;
+  hoop_rate_[i] = hoop;
+  // The plane sum of simhypo eq 24 is rho's rate from the r-z plane's divergence; the ring's
+  // stretching takes rho v_r / r besides.
+  density_rate_[i] -= p.rho * hoop;
+}
+
+void SphSolver::check_off_axis(const Particles& particles) const {
+  if (!setup_.axisymmetric) return;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (!(particles.position[i].x() > 0.0)) {
+      throw NumericalFailure(
+          "a particle reached the axis (r = " + std::to_string(particles.position[i].x()) +
+              " m <= 0): its ring has no radius",
+          static_cast<long>(i));
+    }
+  }
+}
+
 double SphSolver::step(Particles& particles, double time) {
   {
     ScopedTimer t(timers_, Phase::neighbours);
@@ -549,6 +608,9 @@ double SphSolver::step(Particles& particles, double time) {
   {
     ScopedTimer t(timers_, Phase::constitutive);
     advance(particles, dt);
+    // Axisymmetric: the axis's symmetry plane holds the rings off r = 0; a particle that reached
+    // it fails here rather than becoming its mirror image (a ring through the axis)
+    if (setup_.axisymmetric) check_off_axis(particles);
     reflect_across_symmetry_planes(particles);
   }
   counters_.penetrations_last_step = penetrations_;
@@ -628,6 +690,7 @@ void SphSolver::save_state(StateBag& state) const {
   put(state, "solver.acceleration", acceleration_);
   put_matrices(state, "solver.velocity_gradient", velocity_gradient_);
   put(state, "solver.density_rate", density_rate_);
+  if (setup_.axisymmetric) put(state, "solver.hoop_rate", hoop_rate_);
   put(state, "solver.wall_force", wall_force_);
   put(state, "solver.velocity_old", velocity_old_);
   put_matrices(state, "solver.stress_old", stress_old_);
@@ -675,6 +738,7 @@ void SphSolver::restore_state(const StateBag& state) {
   vectors("solver.acceleration", acceleration_);
   get_matrices(state, "solver.velocity_gradient", velocity_gradient_);
   get(state, "solver.density_rate", density_rate_);
+  if (setup_.axisymmetric) get(state, "solver.hoop_rate", hoop_rate_);
   vectors("solver.wall_force", wall_force_);
   vectors("solver.velocity_old", velocity_old_);
   get_matrices(state, "solver.stress_old", stress_old_);

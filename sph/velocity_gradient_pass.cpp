@@ -116,6 +116,7 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
     l << s.lxx, s.lxy, s.lyx, s.lyy;
     velocity_gradient_[i] = l;
     density_rate_[i] = s.rho_rate;
+    if (!hoop_rate_.empty()) add_hoop_rate(i, work[k]);  // axisymmetric
   }
   // Nothing moves before the next step's gather, which clears this if anything did.
   gradient_cached_ = true;

@@ -2,6 +2,7 @@
 // pair loop's inputs copied in working order (soil sorted by cell, ghosts, dummies), and the
 // Verlet list rebuilt when something has moved half the skin.
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +16,7 @@ using detail::artificial_stress_term;
 using detail::in_plane;
 using detail::kParallelMin;
 using detail::mirror;
+using detail::plane_mass;
 
 void SphSolver::update_walls(double time, double dt) {
   // Moving walls follow their prescribed velocity over the last step (dummies move with them),
@@ -113,8 +115,11 @@ double SphSolver::gather(const Particles& particles) {
   bool unchanged = true;
   double moved2 = 0.0;
   std::size_t active = 0;
+  // Axisymmetric: the pair sums take each particle's plane mass m / (2 pi r) (pair_terms.hpp)
+  const bool ring = setup_.axisymmetric;
+  double r_min = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(max : moved2) reduction(&& : unchanged) \
-    if (n >= kParallelMin)
+    reduction(min : r_min) if (n >= kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = order_[k];
     const Vec2 x = particles.position[i];
@@ -123,7 +128,8 @@ double SphSolver::gather(const Particles& particles) {
     const double rho = particles.density[i];
     const Mat3& s = particles.stress[i];
     const double inv_rho2 = 1.0 / (rho * rho);
-    const double m = particles.mass[i];
+    const double m = ring ? plane_mass(particles.mass[i], x.x()) : particles.mass[i];
+    r_min = std::min(r_min, x.x());
     work_[k] = {x.x(),
                 x.y(),
                 v.x(),
@@ -140,6 +146,7 @@ double SphSolver::gather(const Particles& particles) {
     }
     if (reference) moved2 = std::max(moved2, (x - work_reference_[k]).squaredNorm());
   }
+  if (ring && !(r_min > 0.0)) check_off_axis(particles);
   for (std::size_t g = 0; g < n_ghost; ++g) {  // a few hundred: serial
     // Ghost: the mirrored state of its soil particle (Peng 2015 section 4.2); a candidate out of
     // reach carries no mass, so it adds nothing to any sum.
@@ -169,7 +176,11 @@ double SphSolver::gather(const Particles& particles) {
     if (cached) unchanged = unchanged && same(n + g, x);
     const double rho = particles.density[src];
     const double inv_rho2 = 1.0 / (rho * rho);
-    const double m = acts ? particles.mass[src] : 0.0;
+    // the plane mass of its soil particle's ring (axisymmetric: at that particle's radius, also
+    // for the axis's ghosts, which stand at -r)
+    const double m_src =
+        ring ? plane_mass(particles.mass[src], particles.position[src].x()) : particles.mass[src];
+    const double m = acts ? m_src : 0.0;
     work_[n + g] = {x.x(),
                     x.y(),
                     v.x(),
