@@ -24,6 +24,7 @@ using detail::ForcePair;
 using detail::kParallelMin;
 using detail::mirror;
 using detail::PairSum;
+using detail::plane_area;
 
 namespace {
 
@@ -55,6 +56,12 @@ SphSolver::SphSolver(SphSetup setup)
   const duet::SphOptions& o = setup_.options;
   if (!(setup_.spacing > 0.0)) throw InputError("sph: particle spacing must be > 0 m");
   if (o.dummy_layers < 1) throw InputError("sph.dummy_layers must be >= 1");
+  if (setup_.axisymmetric && o.wall_stress == SphWallStress::sigma_max) {
+    // eq 31's minimum would compare stresses over different rings' weights (pair_terms.hpp)
+    throw InputError(
+        "sph.wall_stress = \"sigma-max\" with formulation = \"axisymmetric\": not implemented; "
+        "use \"bui\"");
+  }
   // Peng 2015 eq 28: f_ij = W_ij / W(dp), n = W(0) / W(dp)
   w_dp_ = kernel_.value(setup_.spacing);
   exponent_n_ = kernel_.value(0.0) / w_dp_;
@@ -196,12 +203,8 @@ struct SphSolver::ForcePass {
   // artificial stress needs W_ij and r as well, so with b > 0 everything is computed here.
   const double* cached_factor;
   std::size_t stride;
-  // By driver index: the particles' stress (the axisymmetric source terms read the hoop stress)
-  // and mass (plane strain: per metre, as in work_; axisymmetric: the ring's, by which a soil
-  // particle's push on a wall counts over the whole circumference, and by which a scene's load,
-  // a ring's force, is divided).
+  // By driver index: the particles' stress (the axisymmetric hoop force reads the hoop stress).
   const Mat3* stress;
-  const double* mass;
   bool ring;  // axisymmetric
 };
 
@@ -209,7 +212,7 @@ void SphSolver::pair_loop(const Particles& particles) {
   const duet::SphOptions& o = setup_.options;
   const double b = o.artificial_stress;
   const ForcePass pass{
-      .terms = detail::ForcePairTerms(kernel_, o, h_, w_dp_, exponent_n_),
+      .terms = detail::ForcePairTerms(kernel_, o, h_, w_dp_, exponent_n_, setup_.axisymmetric),
       .n = particles.size(),
       .n_walls = setup_.walls.size(),
       .b = b,
@@ -222,7 +225,6 @@ void SphSolver::pair_loop(const Particles& particles) {
       .cached_factor = gradient_cached_ && b == 0.0 ? gradient_factor_.data() : nullptr,
       .stride = neighbours_.stride(),
       .stress = particles.stress.data(),
-      .mass = particles.mass.data(),
       .ring = setup_.axisymmetric,
   };
   std::fill(wall_force_scratch_.begin(), wall_force_scratch_.end(), Vec2::Zero());
@@ -290,17 +292,18 @@ void SphSolver::soil_pair_row(std::size_t k, const ForcePass& pass, PairSum* sum
       continue;
     }
     s.add_force(p, pj.m, pj.vol, 1.0, pass.rates);
+    if (pass.ring) s.add_ring(p.gx, std::abs(pj.x) - pi.x, plane_area(pj));
     if (j < pass.n) {
       PairSum& sj = sum[j];
       sj.add_force(p, pi.m, pi.vol, -1.0, pass.rates);
+      if (pass.ring) sj.add_ring(p.gx, pj.x - pi.x, plane_area(pi));
       if (pass.sigma_max) {
         s.take_min_normal_stress(pj);
         sj.take_min_normal_stress(pi);
       }
     } else {
-      // A ghost acts on i alone; minus its force is the reaction on its free-slip wall (of i's
-      // whole ring when axisymmetric: pass.mass; in plane strain the same number as pi.m).
-      wall_force[work_wall_[j]] -= pass.mass[order_[k]] * pj.m * p.bracket_times_gradient();
+      // A ghost acts on i alone; minus its force is the reaction on its free-slip wall.
+      wall_force[work_wall_[j]] -= pi.m * pj.m * p.bracket_times_gradient();
     }
   }
   sum[k] += s;
@@ -320,30 +323,22 @@ double SphSolver::particle_pass(const ForcePass& pass, std::size_t n_team) {
       for (std::size_t t = 1; t < n_team; ++t) s += pair_sum_[t * n + k];
       if (!neighbours_.late(k).empty()) dummy_pairs(k, pass, s, wall_force);
       const std::size_t i = order_[k];
-      // Peng 2015 eq 30: + g, and the scene's load (over the mass it acts on, the ring's when
-      // axisymmetric; in plane strain pass.mass[i] is work_[k].m)
-      Vec2 a = Vec2(s.ax, s.ay) + pass.gravity + external_force_[i] / pass.mass[i];
+      // Peng 2015 eq 30: + g, and the scene's load
+      Vec2 a = Vec2(s.ax, s.ay) + pass.gravity + external_force_[i] / work_[k].m;
       const PairData& pk = work_[k];
       if (pass.ring) {
-        // Axisymmetric: the divergence of a stress in cylindrical coordinates without swirl has,
-        // besides the r-z plane's (the pair sums), (sigma_rr - sigma_tt) / r radially and
-        // sigma_rz / r axially (Garcia-Senz et al. 2009: the source terms of the momentum
-        // equation in the r-z plane; the pressure there, the stress tensor here). The
-        // particle's own stress: both vanish on the axis with the hoop stress's difference and
-        // sigma_rz, and the particles stand at r >= dp / 2 off it (sph/README.md, "Axisymmetric").
-        const Mat3& sigma = pass.stress[i];
-        const double inv_rho_r = 1.0 / (pk.rho * pk.x);
-        a.x() += (sigma(0, 0) - sigma(2, 2)) * inv_rho_r;
-        a.y() += sigma(0, 1) * inv_rho_r;
+        // Axisymmetric: the hoop stress's force on the ring, -sigma_tt / (rho r) radially
+        // (Garcia-Senz et al. 2009: the 2 pi P / eta term of the radial momentum equation, the
+        // hoop stress -P there). The pair sums over ring masses with the stress over
+        // rho^2 2 pi r are (1 / eta) div(2 pi r sigma), which holds (sigma_rr, sigma_rz) / (rho r)
+        // besides the r-z plane's divergence; so that a uniform stress sigma_rr = sigma_tt is in
+        // equilibrium exactly, the hoop force takes the pair sums' own radial direction
+        // G_r = sum_j A_j (|r_j| - r_i) d_r W_ij (1 to the kernel's lattice sum inside the body,
+        // less by the axis, whose images stand at |r|) for the unit vector e_r.
+        a.x() -= pass.stress[i](2, 2) * s.ring_r / (pk.rho * pk.x);
       }
       acceleration_[i] = a;
-      if (pass.rates) {
-        Mat2 l;
-        l << s.lxx, s.lxy, s.lyx, s.lyy;
-        velocity_gradient_[i] = l;
-        density_rate_[i] = s.rho_rate;
-        if (pass.ring) add_hoop_rate(i, pk);
-      }
+      if (pass.rates) set_rates(i, pk, s);
       const double a2 = a.squaredNorm();
       a_max2 = std::max(a_max2, std::isfinite(a2) ? a2 : std::numeric_limits<double>::infinity());
     }
@@ -375,7 +370,8 @@ void SphSolver::dummy_pairs(std::size_t k, const ForcePass& pass, PairSum& s,
     r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
   }
   const double m_dummy = rho_i * pass.dummy_volume;
-  const double m_reaction = pass.mass[order_[k]];  // plane strain: pi.m
+  // Axisymmetric: pi's stress and R are over rho^2 2 pi r_i; a dummy's over its own ring's
+  const double w_i = pass.ring ? detail::ring_weight(pi.x) : 1.0;
   // The late part of row k follows its early part in the cache, as in the row.
   const double* late_factor = pass.cached_factor != nullptr ? pass.cached_factor + k * pass.stride +
                                                                   neighbours_.early(k).size()
@@ -383,10 +379,24 @@ void SphSolver::dummy_pairs(std::size_t k, const ForcePass& pass, PairSum& s,
   const auto dummy = [&](const PairData& pj, std::int32_t wall, std::size_t e) {
     ForcePair p;
     const double* cached = late_factor != nullptr ? late_factor + e : nullptr;
-    if (!pass.terms.evaluate(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, cached, p)) return;
-    s.add_force(p, m_dummy, pass.dummy_volume, 1.0, pass.rates);
-    // minus the dummy's force on i is the reaction on its wall (of i's ring when axisymmetric)
-    wall_force[wall] -= m_reaction * m_dummy * p.bracket_times_gradient();
+    if (!pass.ring) {
+      if (!pass.terms.evaluate(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, cached, p)) return;
+      s.add_force(p, m_dummy, pass.dummy_volume, 1.0, pass.rates);
+      // minus the dummy's force on i is the reaction on its wall
+      wall_force[wall] -= pi.m * m_dummy * p.bracket_times_gradient();
+      return;
+    }
+    // Axisymmetric: the dummy is the ring of its own radius (its images beyond the axis too)
+    const double w_d = detail::ring_weight(pj.x);
+    const double scale = w_i / w_d;
+    const SymR r_d{r_dummy.xx * scale, r_dummy.yy * scale, r_dummy.xy * scale};
+    if (!pass.terms.evaluate(pi, pj, rho_i, dxx * scale, dyy * scale, pi.sxy * scale, r_i, r_d,
+                             cached, p)) {
+      return;
+    }
+    s.add_force(p, w_d * m_dummy, w_d * pass.dummy_volume, 1.0, pass.rates);
+    s.add_ring(p.gx, std::abs(pj.x) - pi.x, pass.dummy_volume);
+    wall_force[wall] -= pi.m * (w_d * m_dummy) * p.bracket_times_gradient();
   };
   const auto late = neighbours_.late(k);
   if (!pass.extrapolated) {
@@ -546,22 +556,32 @@ void SphSolver::advance(Particles& particles, double dt) {
   previous_dt_ = dt;
 }
 
+void SphSolver::set_rates(std::size_t i, const PairData& p, const PairSum& s) {
+  Mat2 l;
+  l << s.lxx, s.lxy, s.lyx, s.lyy;
+  if (!setup_.axisymmetric) {
+    velocity_gradient_[i] = l;
+    density_rate_[i] = s.rho_rate;
+    return;
+  }
+  // Axisymmetric: the sums over ring volumes and masses, over the particle's ring weight (eq 21
+  // as (1 / eta_i) sum_j m_j (v_j - v_i) (x) grad W_ij, the gradient the pair forces do work
+  // on; eq 24 as the rate of eta = 2 pi r rho). The hoop rate of stretching v_r / r, with the
+  // radial direction G_r of the hoop force (its power's conjugate): the ring's circumference
+  // grows at 2 pi v_r (Garcia-Senz et al. 2009: the v_r / r term of the continuity equation).
+  // The ring's stretching takes rho v_r / r off the density besides the plane's.
+  const double w = detail::ring_weight(p.x);
+  velocity_gradient_[i] = l / w;
+  const double hoop = p.vx * s.ring_r / p.x;
+  hoop_rate_[i] = hoop;
+  density_rate_[i] = s.rho_rate / w - p.rho * hoop;
+}
+
 Mat3 SphSolver::full_velocity_gradient(std::size_t i) const {
   Mat3 l = embed(velocity_gradient_[i]);
   // Axisymmetric: the out-of-plane slot is the hoop direction, its rate of stretching v_r / r
   if (!hoop_rate_.empty()) l(2, 2) = hoop_rate_[i];
   return l;
-}
-
-void SphSolver::add_hoop_rate(std::size_t i, const PairData& p) {
-  // Axisymmetric: the ring's circumference 2 pi r grows at 2 pi v_r, the hoop rate of stretching
-  // v_r / r (Garcia-Senz et al. 2009: the continuity equation's v_r / r term). It
-  // vanishes on the axis with v_r, and the particles stand at r >= dp / 2 off it.
-  const double hoop = p.vx / p.x;
-  hoop_rate_[i] = hoop;
-  // The plane sum of simhypo eq 24 is rho's rate from the r-z plane's divergence; the ring's
-  // stretching takes rho v_r / r besides.
-  density_rate_[i] -= p.rho * hoop;
 }
 
 void SphSolver::check_off_axis(const Particles& particles) const {

@@ -155,9 +155,9 @@ class SphSolver {
   /// Axisymmetric: NumericalFailure if a soil particle has reached the axis (r <= 0), where its
   /// ring and plane mass m / (2 pi r) have no meaning.
   void check_off_axis(const Particles& particles) const;
-  /// Axisymmetric: soil particle i's (driver index) hoop rate v_r / r from its working copy p,
-  /// and the ring's share -rho v_r / r of its density rate.
-  void add_hoop_rate(std::size_t i, const PairData& p);
+  /// Eq 21's velocity gradient and eq 24's density rate of soil particle i (driver index) from
+  /// its pair sums s and working copy p; axisymmetric, over its ring and with the hoop rate.
+  void set_rates(std::size_t i, const PairData& p, const detail::PairSum& s);
 
   SphSetup setup_;
   Kernel kernel_;

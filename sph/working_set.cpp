@@ -16,7 +16,7 @@ using detail::artificial_stress_term;
 using detail::in_plane;
 using detail::kParallelMin;
 using detail::mirror;
-using detail::plane_mass;
+using detail::ring_weight;
 
 void SphSolver::update_walls(double time, double dt) {
   // Moving walls follow their prescribed velocity over the last step (dummies move with them),
@@ -115,7 +115,9 @@ double SphSolver::gather(const Particles& particles) {
   bool unchanged = true;
   double moved2 = 0.0;
   std::size_t active = 0;
-  // Axisymmetric: the pair sums take each particle's plane mass m / (2 pi r) (pair_terms.hpp)
+  // Axisymmetric (Garcia-Senz et al. 2009): the pair sums run over the ring masses m and ring
+  // volumes m / rho, the stress (and eq 29's R) over rho^2 2 pi |r| (sph/README.md,
+  // "Axisymmetric")
   const bool ring = setup_.axisymmetric;
   double r_min = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(max : moved2) reduction(&& : unchanged) \
@@ -127,8 +129,9 @@ double SphSolver::gather(const Particles& particles) {
     const Vec2 v = particles.velocity[i];
     const double rho = particles.density[i];
     const Mat3& s = particles.stress[i];
-    const double inv_rho2 = 1.0 / (rho * rho);
-    const double m = ring ? plane_mass(particles.mass[i], x.x()) : particles.mass[i];
+    const double ring_over = ring ? 1.0 / ring_weight(x.x()) : 1.0;
+    const double inv_rho2 = ring ? ring_over / (rho * rho) : 1.0 / (rho * rho);
+    const double m = particles.mass[i];
     r_min = std::min(r_min, x.x());
     work_[k] = {x.x(),
                 x.y(),
@@ -141,7 +144,7 @@ double SphSolver::gather(const Particles& particles) {
                 s(1, 1) * inv_rho2,
                 s(0, 1) * inv_rho2};
     if (b > 0.0) {
-      const Mat2 r = artificial_stress_term(in_plane(s), rho, b);
+      const Mat2 r = artificial_stress_term(in_plane(s), rho, b) * ring_over;
       work_r_[k] = {r(0, 0), r(1, 1), r(0, 1)};
     }
     if (reference) moved2 = std::max(moved2, (x - work_reference_[k]).squaredNorm());
@@ -175,11 +178,13 @@ double SphSolver::gather(const Particles& particles) {
     active += acts ? 1 : 0;
     if (cached) unchanged = unchanged && same(n + g, x);
     const double rho = particles.density[src];
-    const double inv_rho2 = 1.0 / (rho * rho);
-    // the plane mass of its soil particle's ring (axisymmetric: at that particle's radius, also
-    // for the axis's ghosts, which stand at -r)
+    // Axisymmetric: the ring of the ghost's own radius |x| with its soil particle's plane mass
+    // (an image across the axis, at -r, is its particle's very ring)
+    const double ring_over = ring ? 1.0 / ring_weight(x.x()) : 1.0;
+    const double inv_rho2 = ring ? ring_over / (rho * rho) : 1.0 / (rho * rho);
     const double m_src =
-        ring ? plane_mass(particles.mass[src], particles.position[src].x()) : particles.mass[src];
+        ring ? particles.mass[src] * ring_weight(x.x()) / ring_weight(particles.position[src].x())
+             : particles.mass[src];
     const double m = acts ? m_src : 0.0;
     work_[n + g] = {x.x(),
                     x.y(),
@@ -192,7 +197,7 @@ double SphSolver::gather(const Particles& particles) {
                     s(1, 1) * inv_rho2,
                     s(0, 1) * inv_rho2};
     if (b > 0.0) {
-      const Mat2 r = artificial_stress_term(s, rho, b);
+      const Mat2 r = artificial_stress_term(s, rho, b) * ring_over;
       work_r_[n + g] = {r(0, 0), r(1, 1), r(0, 1)};
     }
     boundary_position_[n_dummy_ + g] = x;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "common/solver.hpp"
 #include "constitutive/registry.hpp"
@@ -62,7 +63,7 @@ bool interior(const Vec2& x, double two_h) {
   return x.x() < r_max - two_h && x.y() > two_h && x.y() < z_max - two_h;
 }
 
-TEST(SphAxisymmetric, LinearVelocityFieldGivesPlaneStrainGradientAndExactHoopRate) {
+TEST(SphAxisymmetric, LinearVelocityFieldGivesThePlaneGradientAndHoopRateAwayFromTheAxis) {
   // Arrange: v = (a r, b z), expanding (no pair approaches: no artificial viscosity), no stress;
   // the same lattice and velocities as plane particles per metre
   const double a = 0.01, b = 0.02;  // 1/s
@@ -80,27 +81,31 @@ TEST(SphAxisymmetric, LinearVelocityFieldGivesPlaneStrainGradientAndExactHoopRat
   // Act: one Verlet step, whose stress update takes the gradient at the initial state
   ring_solver.step(rings, 0.0);
   plane_solver.step(plane, 0.0);
-  // Assert: the plane block is plane SPH's (the plane masses m / (2 pi r) = rho dp^2 make the
-  // pair sums those of the plane lattice, near the axis too through its ghosts), within 2 % of
-  // the field's (the lattice's kernel sum, as in plane strain); the hoop rate is v_r / r = a
+  // Assert: at particles whose support lies in the lattice (2h from its edges and from the axis),
+  // the ring-weighted gradient (1 / eta_i) sum_j m_j (v_j - v_i) (x) grad W_ij is plane SPH's
+  // (the weights' extra term r_j / r_i - 1 sums a third moment of the lattice, zero), and the
+  // hoop rate v_r G_r / r is a times the same lattice sum G_r = sum_j A_j (r_j - r_i) d_r W_ij
+  // as d v_r / dr's: both within 2 % of the field's (the cubic spline's lattice sum at h/dp =
+  // sqrt(2) is 1.016, as in plane strain)
   const double two_h = ring_solver.kernel().support_radius();
   const Particles start = lattice(true);
   int checked = 0;
   for (std::size_t i = 0; i < rings.size(); ++i) {
-    if (!interior(start.position[i], two_h)) continue;
+    if (!interior(start.position[i], two_h) || start.position[i].x() < two_h) continue;
     const Mat3 l = ring_solver.full_velocity_gradient(i);
     const Mat3 l_plane = plane_solver.full_velocity_gradient(i);
-    EXPECT_NEAR(l(0, 0), l_plane(0, 0), 1e-15) << i;
-    EXPECT_NEAR(l(1, 1), l_plane(1, 1), 1e-15) << i;
-    EXPECT_NEAR(l(0, 1), l_plane(0, 1), 1e-15) << i;
-    EXPECT_NEAR(l(1, 0), l_plane(1, 0), 1e-15) << i;
+    EXPECT_NEAR(l(0, 0), l_plane(0, 0), 1e-12 * b) << i;
+    EXPECT_NEAR(l(1, 1), l_plane(1, 1), 1e-12 * b) << i;
+    EXPECT_NEAR(l(0, 1), l_plane(0, 1), 1e-12 * b) << i;
+    EXPECT_NEAR(l(1, 0), l_plane(1, 0), 1e-12 * b) << i;
+    EXPECT_NEAR(l(2, 2), l(0, 0), 1e-12 * a) << i;
     EXPECT_NEAR(l(0, 0), a, 0.02 * a) << i;
     EXPECT_NEAR(l(1, 1), b, 0.02 * b) << i;
-    EXPECT_NEAR(l(2, 2), a, 1e-15) << i;
+    EXPECT_NEAR(l(2, 2), a, 0.02 * a) << i;
     EXPECT_EQ(l_plane(2, 2), 0.0) << i;
     ++checked;
   }
-  EXPECT_GT(checked, 40);
+  EXPECT_GT(checked, 30);
 }
 
 TEST(SphAxisymmetric, UniformHydrostaticStressGivesZeroAccelerationAtInteriorParticles) {
@@ -112,8 +117,9 @@ TEST(SphAxisymmetric, UniformHydrostaticStressGivesZeroAccelerationAtInteriorPar
   solver.initialise(rings);
   // Act
   solver.step(rings, 0.0);
-  // Assert: the plane divergence is zero (a uniform lattice of plane masses, mirrored across the
-  // axis) and so is the source term (sigma_rr - sigma_tt) / r, also beside the axis
+  // Assert: the pair sums' (sigma_rr, sigma_rz) G_r / (rho r) and the hoop force
+  // -sigma_tt G_r / (rho r) cancel, G_r being the same lattice sum, also beside the axis (its
+  // images at |r|); the r-z plane's divergence of a uniform stress is zero
   const double two_h = solver.kernel().support_radius();
   const Particles start = lattice(true);
   int checked = 0, beside_axis = 0;
@@ -127,7 +133,7 @@ TEST(SphAxisymmetric, UniformHydrostaticStressGivesZeroAccelerationAtInteriorPar
   EXPECT_GT(beside_axis, 4);
 }
 
-TEST(SphAxisymmetric, UniformStressWithAnotherHoopStressAcceleratesByTheSourceTerms) {
+TEST(SphAxisymmetric, UniformStressWithAnotherHoopStressAcceleratesByTheCylindricalTerms) {
   // Arrange: uniform sigma_rr = sigma_zz = -p, sigma_rz = tau, sigma_tt = -q: the plane
   // divergence vanishes, the cylindrical one is ((q - p) / r, tau / r)
   const double p = 1.0e4, q = 6.0e3, tau = 2.0e3;  // Pa
@@ -144,7 +150,8 @@ TEST(SphAxisymmetric, UniformStressWithAnotherHoopStressAcceleratesByTheSourceTe
   solver.step(rings, 0.0);
   // Assert: rho a = ((sigma_rr - sigma_tt) / r, sigma_rz / r) at particles whose support lies in
   // the lattice (away from the axis: the axis's mirror image reverses sigma_rz, which is not
-  // uniform there)
+  // uniform there), within 2 %: the pair sums and the hoop force see e_r as the lattice sum
+  // G_r = 1.016 (as the gradient of the previous test)
   const double two_h = solver.kernel().support_radius();
   const Particles start = lattice(true);
   int checked = 0;
@@ -152,7 +159,7 @@ TEST(SphAxisymmetric, UniformStressWithAnotherHoopStressAcceleratesByTheSourceTe
     const Vec2 x = start.position[i];
     if (!interior(x, two_h) || x.x() < two_h) continue;
     const Vec2 expected((q - p) / (kDensity * x.x()), tau / (kDensity * x.x()));
-    EXPECT_LT((solver.accelerations()[i] - expected).norm(), 1e-9 * p / (kDensity * kSpacing)) << i;
+    EXPECT_LT((solver.accelerations()[i] - expected).norm(), 0.02 * expected.norm()) << i;
     ++checked;
   }
   EXPECT_GT(checked, 20);
@@ -217,6 +224,7 @@ TEST(SphAxisymmetric, ElasticCylinderCompressedAxiallyCarriesYoungsModulusTimesS
   // mean strain of the window (the wall's travel, V (t - T / 2), over H)
   const double strain = speed * (end - 0.1 - 0.5 * ramp) / height;
   const double expected = young * strain * std::numbers::pi * radius * radius;
+  RecordProperty("force_over_closed_form", std::to_string(force / expected));
   EXPECT_NEAR(force, expected, 0.05 * expected);
 }
 
