@@ -28,10 +28,12 @@ inline Mat2 in_plane(const Mat3& s) {
 
 /// Axisymmetric: the ring weight 2 pi |r| of a particle at x = r (Garcia-Senz et al. 2009: a
 /// particle is the ring it sweeps, its mass m = 2 pi r rho A, its plane density eta = 2 pi r rho;
-/// an image beyond the axis, at -r, stands for the same ring). Kept off zero: a ring on the axis
-/// fails the step first (SphSolver::check_off_axis).
+/// an image beyond the axis, at -r, stands for the same ring). Kept off zero (1 pm, so that a
+/// stress over it stays finite): a soil particle on the axis fails the step first
+/// (SphSolver::check_off_axis), a dummy there weighs next to nothing.
 inline double ring_weight(double x) {
-  return 2.0 * std::numbers::pi * std::max(std::abs(x), std::numeric_limits<double>::min());
+  constexpr double kOffAxis = 1e-12;  // m
+  return 2.0 * std::numbers::pi * std::max(std::abs(x), kOffAxis);
 }
 
 /// What the pair loops read of particle j, in the solver's working order (soil sorted by cell,

@@ -37,9 +37,9 @@ struct SphSetup {
   std::vector<std::unique_ptr<constitutive::Model>> models;  // by material index
   std::vector<WallSpec> walls;  // walls and rigid bodies with prescribed motion
   std::vector<FrictionalBodySpec> frictional_bodies;  // simhypo eqs 39-40 (sph/rigid_contact.hpp)
-  // Axisymmetric (x = r about the axis x = 0, y = z; Particles::mass is the ring's): the plane
-  // SPH of the r-z half-plane over the particles' plane masses m / (2 pi r) with the cylindrical
-  // source terms (Garcia-Senz et al. 2009; sph/README.md, "Axisymmetric").
+  // Axisymmetric (x = r about the axis x = 0, y = z; Particles::mass is the ring's): the r-z
+  // plane's SPH over the ring masses with the hoop terms (Garcia-Senz et al. 2009; sph/README.md,
+  // "Axisymmetric").
   bool axisymmetric = false;
 };
 
@@ -153,7 +153,7 @@ class SphSolver {
   /// position, velocity and stress reflected across the plane.
   void reflect_across_symmetry_planes(Particles& particles);
   /// Axisymmetric: NumericalFailure if a soil particle has reached the axis (r <= 0), where its
-  /// ring and plane mass m / (2 pi r) have no meaning.
+  /// ring has no radius.
   void check_off_axis(const Particles& particles) const;
   /// Eq 21's velocity gradient and eq 24's density rate of soil particle i (driver index) from
   /// its pair sums s and working copy p; axisymmetric, over its ring and with the hoop rate.

@@ -1,7 +1,7 @@
 // Tests of the SPH step's axisymmetric formulation (sph/README.md, "Axisymmetric"; Garcia-Senz
-// et al. 2009): the plane SPH of the r-z half-plane over the plane masses m / (2 pi r), the hoop
-// rate v_r / r and the momentum equation's cylindrical source terms, with the axis held by a
-// symmetry plane whose ghosts mirror the soil.
+// et al. 2009): the r-z plane's SPH over the ring masses with the stress over rho^2 2 pi r, the
+// hoop force -sigma_tt G_r / (rho r) and hoop rate v_r G_r / r, with the axis held by a symmetry
+// plane whose ghosts mirror the soil.
 #include <gtest/gtest.h>
 
 #include <cmath>
