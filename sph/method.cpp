@@ -29,11 +29,6 @@ WallVelocity wall_velocity(const Wall& wall) {
 }
 
 SphSetup make_setup(const Scene& scene) {
-  if (scene.formulation == Formulation::axisymmetric) {
-    throw InputError(
-        "formulation = \"axisymmetric\": the SPH solver is plane strain only; run "
-        "this scene through espfem");
-  }
   if (scene.sph.wall_treatment != "dummy") {
     throw InputError("sph.wall_treatment = \"" + scene.sph.wall_treatment +
                      "\": the SPH solver implements \"dummy\" only");
@@ -42,6 +37,10 @@ SphSetup make_setup(const Scene& scene) {
   setup.options = scene.sph;
   setup.spacing = scene.spacing;
   setup.gravity = scene.gravity;
+  // x = r, y = z about the axis x = 0 (sph/README.md, "Axisymmetric"); the scene's loader has
+  // checked that a body reaching the axis is held on it by a symmetry wall, whose ghosts are the
+  // soil's mirror image across the axis
+  setup.axisymmetric = scene.formulation == Formulation::axisymmetric;
   setup.models = constitutive::make_scene_models(scene, loading_strength_factor(scene));
   for (const Wall& w : scene.walls) {
     // A symmetry plane is a free-slip wall to SPH: its ghost particles mirror the material.

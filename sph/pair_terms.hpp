@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <numbers>
 
 #include "common/scene.hpp"
 #include "common/tensor.hpp"
@@ -25,12 +26,28 @@ inline Mat2 in_plane(const Mat3& s) {
   return s.topLeftCorner<2, 2>();
 }
 
+/// Axisymmetric: the ring weight 2 pi |r| of a particle at x = r (Garcia-Senz et al. 2009: a
+/// particle is the ring it sweeps, its mass m = 2 pi r rho A, its plane density eta = 2 pi r rho;
+/// an image beyond the axis, at -r, stands for the same ring). Kept off zero (1 pm, so that a
+/// stress over it stays finite): a soil particle on the axis fails the step first
+/// (SphSolver::check_off_axis), a dummy there weighs next to nothing.
+inline double ring_weight(double x) {
+  constexpr double kOffAxis = 1e-12;  // m
+  return 2.0 * std::numbers::pi * std::max(std::abs(x), kOffAxis);
+}
+
 /// What the pair loops read of particle j, in the solver's working order (soil sorted by cell,
 /// then ghost candidates, then dummies), packed so that one neighbour is one or two cache lines:
 /// position, velocity, mass, density, volume m / rho and the in-plane stress / rho^2 (symmetric).
 struct PairData {
   double x, y, vx, vy, m, rho, vol, sxx, syy, sxy;
 };
+
+/// Axisymmetric: the plane area A = V / (2 pi |r|) of a particle whose working volume is its
+/// ring's.
+inline double plane_area(const PairData& p) {
+  return p.vol / ring_weight(p.x);
+}
 
 /// Peng 2015 eq 29 artificial stress R (symmetric), in working order; only with b > 0.
 struct SymR {
@@ -52,9 +69,11 @@ struct ForcePair {
 class ForcePairTerms {
  public:
   /// w_dp = W(dp) and exponent_n = W(0) / W(dp), Peng 2015 eq 28.
+  /// ring: axisymmetric (the viscosity over the pair's mean ring weight, as the stresses are).
   ForcePairTerms(const Kernel& kernel, const SphOptions& options, double h, double w_dp,
-                 double exponent_n)
-      : kernel_(&kernel),
+                 double exponent_n, bool ring = false)
+      : ring_(ring),
+        kernel_(&kernel),
         h_(h),
         support2_(kernel.support_radius() * kernel.support_radius()),
         alpha_cs_(options.alpha * options.sound_speed),
@@ -92,7 +111,10 @@ class ForcePairTerms {
     const double vr = p.vx * dx + p.vy * dy;
     const double phi = h_ * vr / (r2 + eps_h2_);
     const double viscosity = (-alpha_cs_ * phi + beta_ * phi * phi) * 2.0 / (pi.rho + rho_j);
-    const double pi_ij = select_without_branch(vr < 0.0, viscosity, 0.0);
+    double pi_ij = select_without_branch(vr < 0.0, viscosity, 0.0);
+    // Axisymmetric: the bracket holds stress / (rho^2 2 pi r) (the pair sums run over the ring
+    // masses, Garcia-Senz et al. 2009), so the viscous pressure is over the pair's mean ring
+    if (ring_) pi_ij /= std::numbers::pi * (std::abs(pi.x) + std::abs(pj.x));
     // Peng 2015 eq 30: sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + S_ij
     p.cxx = pi.sxx + txx - pi_ij;
     p.cyy = pi.syy + tyy - pi_ij;
@@ -110,6 +132,7 @@ class ForcePairTerms {
  private:
   // 1 / max(r, kTiny) stays finite at r = 0, where grad_i W_ij vanishes with r_ij.
   static constexpr double kTiny = std::numeric_limits<double>::min();
+  bool ring_;
   const Kernel* kernel_;
   double h_;
   double support2_;  // (2h)^2
@@ -128,6 +151,9 @@ struct PairSum {
   double ax = 0.0, ay = 0.0;
   double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
   double rho_rate = 0.0;
+  // Axisymmetric: the r-z plane's SPH gradient of |r|, sum_j A_j (|r_j| - r_i) d_r W_ij (A_j the
+  // plane area m_j / (2 pi |r_j| rho_j)): the radial direction as the pair sums see it
+  double ring_r = 0.0;
   double min_xx = std::numeric_limits<double>::infinity();
   double min_yy = std::numeric_limits<double>::infinity();
 
@@ -153,6 +179,11 @@ struct PairSum {
     if (rates) add_rates(p.gx, p.gy, p.vx, p.vy, m_j, volume_j);
   }
 
+  /// Axisymmetric: what pair (i, j) adds to ring_r at one end, given g_x = (grad_i W_ij)_x and
+  /// dr = |r_j| - r_i, and the other end's plane area A: the same at both ends of a soil pair
+  /// (from j, r_i - r_j and grad_j W_ji both flip).
+  void add_ring(double gx, double dr, double area) { ring_r += area * dr * gx; }
+
   /// Peng 2015 eq 31: keeps the smallest normal stresses among the particle's soil neighbours
   /// (the stress of a dummy it sees).
   void take_min_normal_stress(const PairData& pj) {
@@ -169,6 +200,7 @@ struct PairSum {
     lyx += o.lyx;
     lyy += o.lyy;
     rho_rate += o.rho_rate;
+    ring_r += o.ring_r;
     min_xx = std::min(min_xx, o.min_xx);
     min_yy = std::min(min_yy, o.min_yy);
     return *this;

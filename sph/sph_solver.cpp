@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <span>
 #include <stdexcept>
 
@@ -23,6 +24,7 @@ using detail::ForcePair;
 using detail::kParallelMin;
 using detail::mirror;
 using detail::PairSum;
+using detail::plane_area;
 
 namespace {
 
@@ -54,6 +56,12 @@ SphSolver::SphSolver(SphSetup setup)
   const duet::SphOptions& o = setup_.options;
   if (!(setup_.spacing > 0.0)) throw InputError("sph: particle spacing must be > 0 m");
   if (o.dummy_layers < 1) throw InputError("sph.dummy_layers must be >= 1");
+  if (setup_.axisymmetric && o.wall_stress == SphWallStress::sigma_max) {
+    // eq 31's minimum would compare stresses over different rings' weights (pair_terms.hpp)
+    throw InputError(
+        "sph.wall_stress = \"sigma-max\" with formulation = \"axisymmetric\": not implemented; "
+        "use \"bui\"");
+  }
   // Peng 2015 eq 28: f_ij = W_ij / W(dp), n = W(0) / W(dp)
   w_dp_ = kernel_.value(setup_.spacing);
   exponent_n_ = kernel_.value(0.0) / w_dp_;
@@ -151,6 +159,7 @@ void SphSolver::initialise(Particles& particles) {
   acceleration_.assign(n, Vec2::Zero());
   external_force_.assign(n, Vec2::Zero());
   velocity_gradient_.assign(n, Mat2::Zero());
+  hoop_rate_.assign(setup_.axisymmetric ? n : 0, 0.0);
   density_rate_.assign(n, 0.0);
   wall_force_.assign(setup_.walls.size(), Vec2::Zero());
   wall_force_scratch_.assign(static_cast<std::size_t>(n_threads) * setup_.walls.size(),
@@ -194,13 +203,16 @@ struct SphSolver::ForcePass {
   // artificial stress needs W_ij and r as well, so with b > 0 everything is computed here.
   const double* cached_factor;
   std::size_t stride;
+  // By driver index: the particles' stress (the axisymmetric hoop force reads the hoop stress).
+  const Mat3* stress;
+  bool ring;  // axisymmetric
 };
 
 void SphSolver::pair_loop(const Particles& particles) {
   const duet::SphOptions& o = setup_.options;
   const double b = o.artificial_stress;
   const ForcePass pass{
-      .terms = detail::ForcePairTerms(kernel_, o, h_, w_dp_, exponent_n_),
+      .terms = detail::ForcePairTerms(kernel_, o, h_, w_dp_, exponent_n_, setup_.axisymmetric),
       .n = particles.size(),
       .n_walls = setup_.walls.size(),
       .b = b,
@@ -212,6 +224,8 @@ void SphSolver::pair_loop(const Particles& particles) {
       .parallel = particles.size() >= kParallelMin,
       .cached_factor = gradient_cached_ && b == 0.0 ? gradient_factor_.data() : nullptr,
       .stride = neighbours_.stride(),
+      .stress = particles.stress.data(),
+      .ring = setup_.axisymmetric,
   };
   std::fill(wall_force_scratch_.begin(), wall_force_scratch_.end(), Vec2::Zero());
   const int team = soil_pair_pass(pass);
@@ -278,9 +292,11 @@ void SphSolver::soil_pair_row(std::size_t k, const ForcePass& pass, PairSum* sum
       continue;
     }
     s.add_force(p, pj.m, pj.vol, 1.0, pass.rates);
+    if (pass.ring) s.add_ring(p.gx, std::abs(pj.x) - pi.x, plane_area(pj));
     if (j < pass.n) {
       PairSum& sj = sum[j];
       sj.add_force(p, pi.m, pi.vol, -1.0, pass.rates);
+      if (pass.ring) sj.add_ring(p.gx, pj.x - pi.x, plane_area(pi));
       if (pass.sigma_max) {
         s.take_min_normal_stress(pj);
         sj.take_min_normal_stress(pi);
@@ -308,14 +324,21 @@ double SphSolver::particle_pass(const ForcePass& pass, std::size_t n_team) {
       if (!neighbours_.late(k).empty()) dummy_pairs(k, pass, s, wall_force);
       const std::size_t i = order_[k];
       // Peng 2015 eq 30: + g, and the scene's load
-      const Vec2 a = Vec2(s.ax, s.ay) + pass.gravity + external_force_[i] / work_[k].m;
-      acceleration_[i] = a;
-      if (pass.rates) {
-        Mat2 l;
-        l << s.lxx, s.lxy, s.lyx, s.lyy;
-        velocity_gradient_[i] = l;
-        density_rate_[i] = s.rho_rate;
+      Vec2 a = Vec2(s.ax, s.ay) + pass.gravity + external_force_[i] / work_[k].m;
+      const PairData& pk = work_[k];
+      if (pass.ring) {
+        // Axisymmetric: the hoop stress's force on the ring, -sigma_tt / (rho r) radially
+        // (Garcia-Senz et al. 2009: the 2 pi P / eta term of the radial momentum equation, the
+        // hoop stress -P there). The pair sums over ring masses with the stress over
+        // rho^2 2 pi r are (1 / eta) div(2 pi r sigma), which holds (sigma_rr, sigma_rz) / (rho r)
+        // besides the r-z plane's divergence; so that a uniform stress sigma_rr = sigma_tt is in
+        // equilibrium exactly, the hoop force takes the pair sums' own radial direction
+        // G_r = sum_j A_j (|r_j| - r_i) d_r W_ij (1 to the kernel's lattice sum inside the body,
+        // less by the axis, whose images stand at |r|) for the unit vector e_r.
+        a.x() -= pass.stress[i](2, 2) * s.ring_r / (pk.rho * pk.x);
       }
+      acceleration_[i] = a;
+      if (pass.rates) set_rates(i, pk, s);
       const double a2 = a.squaredNorm();
       a_max2 = std::max(a_max2, std::isfinite(a2) ? a2 : std::numeric_limits<double>::infinity());
     }
@@ -347,6 +370,8 @@ void SphSolver::dummy_pairs(std::size_t k, const ForcePass& pass, PairSum& s,
     r_dummy = {r(0, 0), r(1, 1), r(0, 1)};
   }
   const double m_dummy = rho_i * pass.dummy_volume;
+  // Axisymmetric: pi's stress and R are over rho^2 2 pi r_i; a dummy's over its own ring's
+  const double w_i = pass.ring ? detail::ring_weight(pi.x) : 1.0;
   // The late part of row k follows its early part in the cache, as in the row.
   const double* late_factor = pass.cached_factor != nullptr ? pass.cached_factor + k * pass.stride +
                                                                   neighbours_.early(k).size()
@@ -354,10 +379,24 @@ void SphSolver::dummy_pairs(std::size_t k, const ForcePass& pass, PairSum& s,
   const auto dummy = [&](const PairData& pj, std::int32_t wall, std::size_t e) {
     ForcePair p;
     const double* cached = late_factor != nullptr ? late_factor + e : nullptr;
-    if (!pass.terms.evaluate(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, cached, p)) return;
-    s.add_force(p, m_dummy, pass.dummy_volume, 1.0, pass.rates);
-    // minus the dummy's force on i is the reaction on its wall
-    wall_force[wall] -= pi.m * m_dummy * p.bracket_times_gradient();
+    if (!pass.ring) {
+      if (!pass.terms.evaluate(pi, pj, rho_i, dxx, dyy, pi.sxy, r_i, r_dummy, cached, p)) return;
+      s.add_force(p, m_dummy, pass.dummy_volume, 1.0, pass.rates);
+      // minus the dummy's force on i is the reaction on its wall
+      wall_force[wall] -= pi.m * m_dummy * p.bracket_times_gradient();
+      return;
+    }
+    // Axisymmetric: the dummy is the ring of its own radius (its images beyond the axis too)
+    const double w_d = detail::ring_weight(pj.x);
+    const double scale = w_i / w_d;
+    const SymR r_d{r_dummy.xx * scale, r_dummy.yy * scale, r_dummy.xy * scale};
+    if (!pass.terms.evaluate(pi, pj, rho_i, dxx * scale, dyy * scale, pi.sxy * scale, r_i, r_d,
+                             cached, p)) {
+      return;
+    }
+    s.add_force(p, w_d * m_dummy, w_d * pass.dummy_volume, 1.0, pass.rates);
+    s.add_ring(p.gx, std::abs(pj.x) - pi.x, pass.dummy_volume);
+    wall_force[wall] -= pi.m * (w_d * m_dummy) * p.bracket_times_gradient();
   };
   const auto late = neighbours_.late(k);
   if (!pass.extrapolated) {
@@ -427,7 +466,7 @@ void SphSolver::advance(Particles& particles, double dt) {
     const auto m = static_cast<std::size_t>(particles.material[i]);
     const constitutive::Model& model = *setup_.models[m];
     const std::span<double> internal(particles.internal.of(i), n_internal_[m]);
-    const Mat3 l = embed(velocity_gradient_[i]);
+    const Mat3 l = full_velocity_gradient(i);
     const Mat3 d = sym(l);   // Peng 2015 eq 22
     const Mat3 w = skew(l);  // Peng 2015 eq 23
     const Vec2* v_new = &particles.velocity[i];
@@ -517,6 +556,46 @@ void SphSolver::advance(Particles& particles, double dt) {
   previous_dt_ = dt;
 }
 
+void SphSolver::set_rates(std::size_t i, const PairData& p, const PairSum& s) {
+  Mat2 l;
+  l << s.lxx, s.lxy, s.lyx, s.lyy;
+  if (!setup_.axisymmetric) {
+    velocity_gradient_[i] = l;
+    density_rate_[i] = s.rho_rate;
+    return;
+  }
+  // Axisymmetric: the sums over ring volumes and masses, over the particle's ring weight (eq 21
+  // as (1 / eta_i) sum_j m_j (v_j - v_i) (x) grad W_ij, the gradient the pair forces do work
+  // on; eq 24 as the rate of eta = 2 pi r rho). The hoop rate of stretching v_r / r, with the
+  // radial direction G_r of the hoop force (its power's conjugate): the ring's circumference
+  // grows at 2 pi v_r (Garcia-Senz et al. 2009: the v_r / r term of the continuity equation).
+  // The ring's stretching takes rho v_r / r off the density besides the plane's.
+  const double w = detail::ring_weight(p.x);
+  velocity_gradient_[i] = l / w;
+  const double hoop = p.vx * s.ring_r / p.x;
+  hoop_rate_[i] = hoop;
+  density_rate_[i] = s.rho_rate / w - p.rho * hoop;
+}
+
+Mat3 SphSolver::full_velocity_gradient(std::size_t i) const {
+  Mat3 l = embed(velocity_gradient_[i]);
+  // Axisymmetric: the out-of-plane slot is the hoop direction, its rate of stretching v_r / r
+  if (!hoop_rate_.empty()) l(2, 2) = hoop_rate_[i];
+  return l;
+}
+
+void SphSolver::check_off_axis(const Particles& particles) const {
+  if (!setup_.axisymmetric) return;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (!(particles.position[i].x() > 0.0)) {
+      throw NumericalFailure(
+          "a particle reached the axis (r = " + std::to_string(particles.position[i].x()) +
+              " m <= 0): its ring has no radius",
+          static_cast<long>(i));
+    }
+  }
+}
+
 double SphSolver::step(Particles& particles, double time) {
   {
     ScopedTimer t(timers_, Phase::neighbours);
@@ -549,6 +628,9 @@ double SphSolver::step(Particles& particles, double time) {
   {
     ScopedTimer t(timers_, Phase::constitutive);
     advance(particles, dt);
+    // Axisymmetric: the axis's symmetry plane holds the rings off r = 0; a particle that reached
+    // it fails here rather than becoming its mirror image (a ring through the axis)
+    if (setup_.axisymmetric) check_off_axis(particles);
     reflect_across_symmetry_planes(particles);
   }
   counters_.penetrations_last_step = penetrations_;
@@ -628,6 +710,7 @@ void SphSolver::save_state(StateBag& state) const {
   put(state, "solver.acceleration", acceleration_);
   put_matrices(state, "solver.velocity_gradient", velocity_gradient_);
   put(state, "solver.density_rate", density_rate_);
+  if (setup_.axisymmetric) put(state, "solver.hoop_rate", hoop_rate_);
   put(state, "solver.wall_force", wall_force_);
   put(state, "solver.velocity_old", velocity_old_);
   put_matrices(state, "solver.stress_old", stress_old_);
@@ -675,6 +758,7 @@ void SphSolver::restore_state(const StateBag& state) {
   vectors("solver.acceleration", acceleration_);
   get_matrices(state, "solver.velocity_gradient", velocity_gradient_);
   get(state, "solver.density_rate", density_rate_);
+  if (setup_.axisymmetric) get(state, "solver.hoop_rate", hoop_rate_);
   vectors("solver.wall_force", wall_force_);
   vectors("solver.velocity_old", velocity_old_);
   get_matrices(state, "solver.stress_old", stress_old_);

@@ -37,6 +37,10 @@ struct SphSetup {
   std::vector<std::unique_ptr<constitutive::Model>> models;  // by material index
   std::vector<WallSpec> walls;  // walls and rigid bodies with prescribed motion
   std::vector<FrictionalBodySpec> frictional_bodies;  // simhypo eqs 39-40 (sph/rigid_contact.hpp)
+  // Axisymmetric (x = r about the axis x = 0, y = z; Particles::mass is the ring's): the r-z
+  // plane's SPH over the ring masses with the hoop terms (Garcia-Senz et al. 2009; sph/README.md,
+  // "Axisymmetric").
+  bool axisymmetric = false;
 };
 
 struct SphCounters {
@@ -94,6 +98,9 @@ class SphSolver {
   const std::vector<Vec2>& boundary_positions() const { return boundary_position_; }
   /// Acceleration of each soil particle in the last step (m/s^2).
   const std::vector<Vec2>& accelerations() const { return acceleration_; }
+  /// The velocity gradient of soil particle i that the last stress update used (or the next
+  /// will use): eq 21's in-plane block and, axisymmetric, the hoop rate v_r / r in (2, 2).
+  Mat3 full_velocity_gradient(std::size_t i) const;
 
   /// `duet run --resume` (common/solver.hpp): the walls and dummies where they are, the rigid
   /// bodies' contact state, the integrator's last step (Verlet's n - 1 state), the counters, keys
@@ -145,6 +152,12 @@ class SphSolver {
   /// A particle that ended a step behind a symmetry plane becomes its mirror image (its ghost):
   /// position, velocity and stress reflected across the plane.
   void reflect_across_symmetry_planes(Particles& particles);
+  /// Axisymmetric: NumericalFailure if a soil particle has reached the axis (r <= 0), where its
+  /// ring has no radius.
+  void check_off_axis(const Particles& particles) const;
+  /// Eq 21's velocity gradient and eq 24's density rate of soil particle i (driver index) from
+  /// its pair sums s and working copy p; axisymmetric, over its ring and with the hoop rate.
+  void set_rates(std::size_t i, const PairData& p, const detail::PairSum& s);
 
   SphSetup setup_;
   Kernel kernel_;
@@ -196,6 +209,7 @@ class SphSolver {
   std::vector<Vec2> acceleration_;
   std::vector<Vec2> external_force_;
   std::vector<Mat2> velocity_gradient_;
+  std::vector<double> hoop_rate_;  // axisymmetric only: v_r / r (empty in plane strain)
   std::vector<double> density_rate_;
   double acceleration_max_ = 0.0;
   long penetrations_ = 0;  // soil particles behind a wall after the last update

@@ -19,6 +19,7 @@ namespace duet::sph {
 
 using detail::kParallelMin;
 using detail::PairSum;
+using detail::plane_area;
 
 void SphSolver::velocity_gradient_pass(const Particles& particles) {
   {
@@ -38,6 +39,7 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
   const std::int32_t* work_wall = work_wall_.data();
   const bool extrapolated = setup_.options.dummy_velocity == SphDummyVelocity::extrapolated;
   const bool parallel = n >= kParallelMin;
+  const bool ring = setup_.axisymmetric;
   const std::size_t stride = neighbours_.stride();
   double* factor = gradient_factor_.data();
   int team = 1;
@@ -86,21 +88,35 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
         const PairData& pj = work[j];
         if (!pair_terms(pi, pj, row_factor[e], p)) continue;
         add(s, p, pj.m, pj.vol);
-        if (j < n) add(sum[j], p, pi.m, pi.vol);
+        if (ring) s.add_ring(p.gx, std::abs(pj.x) - pi.x, plane_area(pj));  // as in pair_loop
+        if (j < n) {
+          add(sum[j], p, pi.m, pi.vol);
+          if (ring) sum[j].add_ring(p.gx, pj.x - pi.x, plane_area(pi));
+        }
       }
       // Dummy particles: mass rho_i dp^2, volume dp^2, the wall's velocity or the extrapolated
       // one (Morris 1997 / Bui 2008, as in pair_loop).
       const double m_dummy = pi.rho * dummy_volume;
+      // Axisymmetric: the dummy is the ring of its own radius (as in pair_loop)
+      const auto add_dummy = [&](const PairData& pj) {
+        if (!ring) {
+          add(s, p, m_dummy, dummy_volume);
+          return;
+        }
+        const double w_d = detail::ring_weight(pj.x);
+        add(s, p, w_d * m_dummy, w_d * dummy_volume);
+        s.add_ring(p.gx, std::abs(pj.x) - pi.x, dummy_volume);
+      };
       if (!extrapolated) {
         for (std::size_t e = 0; e < late.size(); ++e) {
-          if (pair_terms(pi, work[late[e]], late_factor[e], p)) add(s, p, m_dummy, dummy_volume);
+          if (pair_terms(pi, work[late[e]], late_factor[e], p)) add_dummy(work[late[e]]);
         }
       } else {
         WallLine line;  // pi's nearest segment of the dummy's wall
         for (std::size_t e = 0; e < late.size(); ++e) {
           PairData pj = work[late[e]];
           extrapolate_dummy_velocity(pi, work_wall[late[e]], line, pj);
-          if (pair_terms(pi, pj, late_factor[e], p)) add(s, p, m_dummy, dummy_volume);
+          if (pair_terms(pi, pj, late_factor[e], p)) add_dummy(pj);
         }
       }
       sum[k] += s;
@@ -111,11 +127,7 @@ void SphSolver::velocity_gradient_pass(const Particles& particles) {
   for (std::size_t k = 0; k < n; ++k) {
     PairSum s = pair_sum_[k];
     for (std::size_t t_id = 1; t_id < n_team; ++t_id) s += pair_sum_[t_id * n + k];
-    const std::size_t i = order_[k];
-    Mat2 l;
-    l << s.lxx, s.lxy, s.lyx, s.lyy;
-    velocity_gradient_[i] = l;
-    density_rate_[i] = s.rho_rate;
+    set_rates(order_[k], work[k], s);
   }
   // Nothing moves before the next step's gather, which clears this if anything did.
   gradient_cached_ = true;

@@ -2,6 +2,7 @@
 // pair loop's inputs copied in working order (soil sorted by cell, ghosts, dummies), and the
 // Verlet list rebuilt when something has moved half the skin.
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +16,7 @@ using detail::artificial_stress_term;
 using detail::in_plane;
 using detail::kParallelMin;
 using detail::mirror;
+using detail::ring_weight;
 
 void SphSolver::update_walls(double time, double dt) {
   // Moving walls follow their prescribed velocity over the last step (dummies move with them),
@@ -113,8 +115,13 @@ double SphSolver::gather(const Particles& particles) {
   bool unchanged = true;
   double moved2 = 0.0;
   std::size_t active = 0;
+  // Axisymmetric (Garcia-Senz et al. 2009): the pair sums run over the ring masses m and ring
+  // volumes m / rho, the stress (and eq 29's R) over rho^2 2 pi |r| (sph/README.md,
+  // "Axisymmetric")
+  const bool ring = setup_.axisymmetric;
+  double r_min = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(max : moved2) reduction(&& : unchanged) \
-    if (n >= kParallelMin)
+    reduction(min : r_min) if (n >= kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = order_[k];
     const Vec2 x = particles.position[i];
@@ -122,8 +129,10 @@ double SphSolver::gather(const Particles& particles) {
     const Vec2 v = particles.velocity[i];
     const double rho = particles.density[i];
     const Mat3& s = particles.stress[i];
-    const double inv_rho2 = 1.0 / (rho * rho);
+    const double ring_over = ring ? 1.0 / ring_weight(x.x()) : 1.0;
+    const double inv_rho2 = ring ? ring_over / (rho * rho) : 1.0 / (rho * rho);
     const double m = particles.mass[i];
+    r_min = std::min(r_min, x.x());
     work_[k] = {x.x(),
                 x.y(),
                 v.x(),
@@ -135,11 +144,12 @@ double SphSolver::gather(const Particles& particles) {
                 s(1, 1) * inv_rho2,
                 s(0, 1) * inv_rho2};
     if (b > 0.0) {
-      const Mat2 r = artificial_stress_term(in_plane(s), rho, b);
+      const Mat2 r = artificial_stress_term(in_plane(s), rho, b) * ring_over;
       work_r_[k] = {r(0, 0), r(1, 1), r(0, 1)};
     }
     if (reference) moved2 = std::max(moved2, (x - work_reference_[k]).squaredNorm());
   }
+  if (ring && !(r_min > 0.0)) check_off_axis(particles);
   for (std::size_t g = 0; g < n_ghost; ++g) {  // a few hundred: serial
     // Ghost: the mirrored state of its soil particle (Peng 2015 section 4.2); a candidate out of
     // reach carries no mass, so it adds nothing to any sum.
@@ -168,8 +178,14 @@ double SphSolver::gather(const Particles& particles) {
     active += acts ? 1 : 0;
     if (cached) unchanged = unchanged && same(n + g, x);
     const double rho = particles.density[src];
-    const double inv_rho2 = 1.0 / (rho * rho);
-    const double m = acts ? particles.mass[src] : 0.0;
+    // Axisymmetric: the ring of the ghost's own radius |x| with its soil particle's plane mass
+    // (an image across the axis, at -r, is its particle's very ring)
+    const double ring_over = ring ? 1.0 / ring_weight(x.x()) : 1.0;
+    const double inv_rho2 = ring ? ring_over / (rho * rho) : 1.0 / (rho * rho);
+    const double m_src =
+        ring ? particles.mass[src] * ring_weight(x.x()) / ring_weight(particles.position[src].x())
+             : particles.mass[src];
+    const double m = acts ? m_src : 0.0;
     work_[n + g] = {x.x(),
                     x.y(),
                     v.x(),
@@ -181,7 +197,7 @@ double SphSolver::gather(const Particles& particles) {
                     s(1, 1) * inv_rho2,
                     s(0, 1) * inv_rho2};
     if (b > 0.0) {
-      const Mat2 r = artificial_stress_term(s, rho, b);
+      const Mat2 r = artificial_stress_term(s, rho, b) * ring_over;
       work_r_[n + g] = {r(0, 0), r(1, 1), r(0, 1)};
     }
     boundary_position_[n_dummy_ + g] = x;
