@@ -180,6 +180,14 @@ bool IncrementOperator::evaluate(const std::vector<Vec2>& u) {
   const std::size_t n = start_.size();
   position_.resize(n);
   for (std::size_t i = 0; i < n; ++i) position_[i] = start_.position[i] + u[i];
+  // Axisymmetric: an iterate that puts a node on or across the axis has no ring there (the
+  // cells' refill would throw); a failed evaluation lets the line search shorten the step, or
+  // the increment be cut, as for a non-finite stress
+  if (discretisation_.axisymmetric()) {
+    for (const Vec2& x : position_) {
+      if (!(x.x() > 0.0)) return false;
+    }
+  }
   // The strips' wall points: on a no-slip wall they follow the wall; on a free-slip wall they
   // move with their nodes.
   WallStrips& strips = discretisation_.wall_strips();

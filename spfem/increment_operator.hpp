@@ -61,7 +61,7 @@ class IncrementOperator {
                     Timers* timers = nullptr, double increment_stabilisation = 0.0);
 
   /// Stress and internal force at the nodal displacement `u`. Returns false when the model
-  /// could not integrate (a non-finite stress).
+  /// could not integrate (a non-finite stress) or, axisymmetric, when `u` puts a node at r <= 0.
   bool evaluate(const std::vector<Vec2>& u);
 
   /// The tangent dF_int/du on the free dofs of `dofs` at the state of the last evaluate(), plus

@@ -255,9 +255,10 @@ TEST(ImplicitSolver, AxisymmetricCylinderOnItsFloorCarriesItsWeightWithQuadratic
   // Act: one increment (quasi-static: gravity is there in full)
   solver.step(p, 0.0, 1.0);
   // Assert: the floor carries the weight of every ring (the residual of the free dofs is
-  // 1e-12 of it), and Newton's last pair above the floor of round-off has r_k+1 <= C r_k^2 with
-  // C bounded (a tangent missing a hoop or ring term converges linearly: r_k+1 / r_k^2 = q / r_k
-  // grows as r_k falls)
+  // 1e-12 of it), and each pair of Newton's residuals below 0.1 and above the floor of round-off
+  // has r_k+1 <= C r_k^2 with C bounded (a tangent missing a hoop or ring term converges
+  // linearly: r_k+1 / r_k^2 = q / r_k grows as r_k falls); measured: 0.086, 4.5e-4, 6.9e-9,
+  // C about 0.06 and 0.03
   const Vec2 f = solver.boundary_forces()[0];
   std::printf("floor reaction %.9g N, weight %.9g N\n", f.y(), weight);
   EXPECT_NEAR(f.y(), -weight, weight * 1e-8);
@@ -268,12 +269,12 @@ TEST(ImplicitSolver, AxisymmetricCylinderOnItsFloorCarriesItsWeightWithQuadratic
   double largest = 0.0;
   int checked = 0;
   for (std::size_t k = 1; k < r.size(); ++k) {
-    if (r[k] < 1e-13 || !(r[k - 1] < 1e-2)) continue;
+    if (r[k] < 1e-13 || !(r[k - 1] < 0.1)) continue;
     largest = std::max(largest, r[k] / (r[k - 1] * r[k - 1]));
     ++checked;
   }
   std::printf("%d pairs checked, largest r_k+1 / r_k^2 %.3g\n", checked, largest);
-  EXPECT_GE(checked, 1);
+  EXPECT_GE(checked, 2);
   EXPECT_LT(largest, 100.0);
 }
 
