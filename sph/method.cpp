@@ -32,7 +32,7 @@ SphSetup make_setup(const Scene& scene) {
   if (scene.formulation == Formulation::axisymmetric) {
     throw InputError(
         "formulation = \"axisymmetric\": the SPH solver is plane strain only; run "
-        "this scene through espfem");
+        "this scene through espfem or ispfem");
   }
   if (scene.sph.wall_treatment != "dummy") {
     throw InputError("sph.wall_treatment = \"" + scene.sph.wall_treatment +
