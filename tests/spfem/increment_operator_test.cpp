@@ -366,5 +366,22 @@ TEST(IncrementOperator, AxisymmetricTrescaYieldingInHoopTangentMatchesFiniteDiff
   EXPECT_LT(error, 1e-6);
 }
 
+TEST(IncrementOperator, AxisymmetricTrescaOnAnEdgeTangentMatchesFiniteDifferenceJacobian) {
+  // Arrange: sigma_rr = sigma_tt = c_u, sigma_zz = -c_u (the radial and hoop stresses equal, at
+  // yield: triaxial compression about the axis), stretched equally in r and theta (u_r = 0.005 r)
+  // and compressed along z: the return is onto the edge where two planes of Tresca meet, with
+  // the hoop stress one of its two equal principal stresses
+  Case c;
+  c.model = constitutive::make_model("tresca", {{"E", 100.0}, {"nu", 0.45}, {"cu", 2.0}}, "test");
+  c.start = cloud(*c.model, 6);
+  for (Mat3& sigma : c.start.stress) sigma = Vec3(2.0, -2.0, 2.0).asDiagonal();
+  move_off_axis(c, 0.2, (Mat2() << 0.005, 0.0, 0.0, -0.03).finished(), 1e-3, 13);
+  // Act
+  const double error = tangent_error(c, true, 0.0, {}, 0.0, true);
+  // Assert
+  std::printf("axisymmetric tresca edge: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
 }  // namespace
 }  // namespace duet::spfem
