@@ -61,7 +61,8 @@ std::string why_not_halved(const duet::SpfemImplicitOptions& o, double size, dou
 }  // namespace
 
 ImplicitSolver::ImplicitSolver(IspfemSetup setup)
-    : setup_(std::move(setup)), discretisation_(setup_.options, setup_.spacing, setup_.boundaries) {
+    : setup_(std::move(setup)),
+      discretisation_(setup_.options, setup_.spacing, setup_.boundaries, setup_.axisymmetric) {
   const duet::SpfemImplicitOptions& o = setup_.implicit;
   if (!(o.tolerance > 0.0)) throw InputError("spfem.implicit.tolerance must be > 0");
   if (!(o.displacement_tolerance > 0.0)) {

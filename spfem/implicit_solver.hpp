@@ -41,7 +41,7 @@ struct IspfemSetup {
   Vec2 gravity = Vec2::Zero();          // m/s^2
   std::vector<std::unique_ptr<constitutive::Model>> models;  // by material index
   std::vector<NodeBoundary> boundaries;                      // walls, then rigid bodies
-  bool axisymmetric = false;  // refused by the method (no hoop terms in the tangent)
+  bool axisymmetric = false;  // x = r about the axis x = 0 (Scene::formulation)
 };
 
 struct NewtonCounters {

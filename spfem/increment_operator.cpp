@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <numbers>
 #include <span>
 
 #include "constitutive/objective.hpp"
@@ -13,16 +14,19 @@ namespace {
 
 constexpr std::size_t kParallelMin = 2048;  // as in explicit_solver.cpp
 
-// Voigt positions (xx, yy, zz, xy, yz, zx) of the in-plane components xx, yy, xy.
-constexpr int kPlane[3] = {0, 1, 3};
+// Voigt positions (xx, yy, zz, xy, yz, zx) of the components xx, yy, xy and zz (the hoop tt
+// of an axisymmetric scene), in the order of the operator's 4-component D_k.
+constexpr int kComponent[4] = {0, 1, 3, 2};
+
+using Vec4 = Eigen::Vector4d;
 
 /// D C^-1 dsigma: how the model's return maps a change of its trial stress, for a model that
 /// integrates from an elastic trial sigma + C d_eps (Drucker-Prager, Tresca, Mohr-Coulomb,
 /// elasticity); a model with a tangent bound (hypoplastic) integrates a rate, whose start-stress
 /// derivative is the identity to first order.
-Vec3 through_return(const Mat6& d, const constitutive::ElasticModuli& e, const Mat3& dsigma) {
+Vec4 through_return(const Mat6& d, const constitutive::ElasticModuli& e, const Mat3& dsigma) {
   if (e.tangent_bound > 0.0 || !(e.shear > 0.0) || !(e.bulk > 0.0)) {
-    return Vec3(dsigma(0, 0), dsigma(1, 1), dsigma(0, 1));
+    return Vec4(dsigma(0, 0), dsigma(1, 1), dsigma(0, 1), dsigma(2, 2));
   }
   // elastic compliance: eps = dev(dsigma) / 2G + tr(dsigma) / 9K I, engineering shear
   const double mean = dsigma.trace() / 3.0;
@@ -34,13 +38,14 @@ Vec3 through_return(const Mat6& d, const constitutive::ElasticModuli& e, const M
   strain(4) = dsigma(1, 2) / e.shear;
   strain(5) = dsigma(0, 2) / e.shear;
   const Vec6 s = d * strain;
-  return Vec3(s(0), s(1), s(3));
+  return Vec4(s(0), s(1), s(3), s(2));
 }
 
-/// B_L of one node (3 x 2): [b_x 0; 0 b_y; b_y b_x].
-Eigen::Matrix<double, 3, 2> strain_operator(const Vec2& b) {
-  Eigen::Matrix<double, 3, 2> m;
-  m << b.x(), 0.0, 0.0, b.y(), b.y(), b.x();
+/// B of one node (4 x 2): [b_x 0; 0 b_y; b_y b_x; hoop 0], `hoop` = 1 / r_k for node k's own
+/// entry of an axisymmetric row (the hoop strain u_r / r), else 0.
+Eigen::Matrix<double, 4, 2> strain_operator(const Vec2& b, double hoop = 0.0) {
+  Eigen::Matrix<double, 4, 2> m;
+  m << b.x(), 0.0, 0.0, b.y(), b.y(), b.x(), hoop, 0.0;
   return m;
 }
 
@@ -63,8 +68,8 @@ IncrementOperator::IncrementOperator(
   stress_ = start.stress;
   internal_ = start.internal.values;
   strain_increment_.assign(n, Mat3::Zero());
-  material_tangent_.assign(n, Mat3::Zero());
-  spin_stress_.assign(n, Vec3::Zero());
+  material_tangent_.assign(n, Mat4::Zero());
+  spin_stress_.assign(n, Vec4::Zero());
   internal_force_.assign(n, Vec2::Zero());
   Stabilisation& total = stabilisation_[0];
   Stabilisation& per_increment = stabilisation_[1];
@@ -93,6 +98,14 @@ IncrementOperator::IncrementOperator(
     // 2 G, not the P-wave modulus: at nu near 1/2 the latter would penalise the volumetric part
     // of the deviation some 80 times harder, which is the locking nodal integration avoids
     if (increment_on) per_increment.modulus[i] = 2.0 * std::abs(e.shear);
+    // Axisymmetric: each node's modulus weighed by its ring 2 pi r on the energy's reference
+    // positions, so that W counts a ring's worth as the internal force does; held fixed, W
+    // stays quadratic in x and its Hessian exact
+    if (discretisation_.axisymmetric()) {
+      constexpr double two_pi = 2.0 * std::numbers::pi;
+      if (total_on) total.modulus[i] *= two_pi * total.reference[i].x();
+      if (increment_on) per_increment.modulus[i] *= two_pi * per_increment.reference[i].x();
+    }
   }
 }
 
@@ -101,6 +114,7 @@ void IncrementOperator::update_stresses(const std::vector<Vec2>& u) {
   const SmoothingCells& b0 = start_cells_;
   const std::size_t width = start_.internal.width;
   const bool walls = !b0.wall_offset.empty();
+  const bool ring = !b0.ring.empty();
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
     stress_[k] = start_.stress[k];
@@ -123,6 +137,9 @@ void IncrementOperator::update_stresses(const std::vector<Vec2>& u) {
     }
     Mat3 l = Mat3::Zero();
     l.topLeftCorner<2, 2>() = g;
+    // Axisymmetric: the hoop strain u_r,k / r_k(x_n), linear in u on x_n as G_k is (a ring's
+    // circumference grows with its radius; it spins nothing)
+    if (ring) l(2, 2) = u[k].x() / start_.position[k].x();
     const Mat3 d_strain = sym(l);
     const Mat3 d_spin = skew(l);
     const auto m = std::size_t(start_.material[k]);
@@ -142,8 +159,8 @@ void IncrementOperator::update_stresses(const std::vector<Vec2>& u) {
     model.correct(s, internal);
     stress_[k] = s;
     strain_increment_[k] = d_strain;
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) material_tangent_[k](i, j) = d(kPlane[i], kPlane[j]);
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) material_tangent_[k](i, j) = d(kComponent[i], kComponent[j]);
     }
     // d(R sigma R^T)/dW_12 = (Omega sigma_r - sigma_r Omega) / (1 + W_12^2 / 4) for the
     // Hughes-Winget (Cayley) rotation, Omega = [[0, 1], [-1, 0]]: in Voigt
@@ -163,6 +180,14 @@ bool IncrementOperator::evaluate(const std::vector<Vec2>& u) {
   const std::size_t n = start_.size();
   position_.resize(n);
   for (std::size_t i = 0; i < n; ++i) position_[i] = start_.position[i] + u[i];
+  // Axisymmetric: an iterate that puts a node on or across the axis has no ring there (the
+  // cells' refill would throw); a failed evaluation lets the line search shorten the step, or
+  // the increment be cut, as for a non-finite stress
+  if (discretisation_.axisymmetric()) {
+    for (const Vec2& x : position_) {
+      if (!(x.x() > 0.0)) return false;
+    }
+  }
   // The strips' wall points: on a no-slip wall they follow the wall; on a free-slip wall they
   // move with their nodes.
   WallStrips& strips = discretisation_.wall_strips();
@@ -210,12 +235,16 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
   const std::size_t n = start_.size();
   // The geometric part of rows with layer or wall-strip terms (their weights are not A_e / 3
   // and depend on edge lengths and turns): by central differences of the row's own terms
+  const bool ring = !discretisation_.cells().ring.empty();
   row_derivative_.resize(n);
+  area_derivative_.resize(n);
   const double h = 1e-6 * discretisation_.spacing();
   for (std::size_t k = 0; k < n; ++k) {
     row_derivative_[k].clear();
+    area_derivative_[k].clear();
     if (start_cells_.area[k] > 0.0 && discretisation_.has_layer_terms(k)) {
-      discretisation_.row_derivative(position_, k, h, row_derivative_[k]);
+      discretisation_.row_derivative(position_, k, h, row_derivative_[k],
+                                     ring ? &area_derivative_[k] : nullptr);
     }
   }
   const SmoothingCells& cells = discretisation_.cells();
@@ -229,7 +258,7 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
 #pragma omp parallel num_threads(n_threads)
   {
     Mat2* out = blocks_.blocks(omp_get_thread_num());
-    std::vector<Eigen::Matrix<double, 3, 2>> q;
+    std::vector<Eigen::Matrix<double, 4, 2>> q;
     std::vector<double> hessian;
     const bool meshed = !discretisation_.mesh().triangles.empty();
 #pragma omp for schedule(static)
@@ -239,20 +268,52 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
       const std::int32_t length = cells.offset[k + 1] - begin;
       // dF_l/du_m for l = column[begin + i], m = column[begin + j]: block pair[i * length + j]
       const std::int32_t* pair = blocks_.row_pairs(k);
-      // Material and spin: A_k B_L,l^T [D_k B_L,m^0 + sigma_bar_k B_S,m^0]
+      // Node k's own entry of its row (the hoop terms sit there), -1 in plane strain
+      std::int32_t self = -1;
+      if (ring) {
+        for (std::int32_t j = 0; j < length; ++j) {
+          if (std::size_t(cells.column[std::size_t(begin + j)]) == k) self = j;
+        }
+      }
+      // Material and spin: V_k B_l^T [D_k B_m^0 + sigma_bar_k B_S,m^0] (the hoop rows 1 / r_k
+      // at x_n on the right, at x on the left: header)
+      const double hoop_start = ring ? 1.0 / start_.position[k].x() : 0.0;
       q.resize(std::size_t(length));
       for (std::int32_t j = 0; j < length; ++j) {
         const Vec2& b = b0.gradient[std::size_t(begin + j)];
         Eigen::Matrix<double, 1, 2> spin;  // B_S = 1/2 [b_y, -b_x]
         spin << 0.5 * b.y(), -0.5 * b.x();
-        q[std::size_t(j)] = material_tangent_[k] * strain_operator(b) + spin_stress_[k] * spin;
+        q[std::size_t(j)] =
+            material_tangent_[k] * strain_operator(b, j == self ? hoop_start : 0.0) +
+            spin_stress_[k] * spin;
       }
       const double area = cells.area[k];
+      const double volume = cell_volume(cells, k);
+      const double hoop = ring ? 1.0 / position_[k].x() : 0.0;
       for (std::int32_t i = 0; i < length; ++i) {
-        const Eigen::Matrix<double, 2, 3> left =
-            area * strain_operator(cells.gradient[std::size_t(begin + i)]).transpose();
+        const Eigen::Matrix<double, 2, 4> left =
+            volume * strain_operator(cells.gradient[std::size_t(begin + i)], i == self ? hoop : 0.0)
+                         .transpose();
         for (std::int32_t j = 0; j < length; ++j) {
           out[pair[i * length + j]].noalias() += left * q[std::size_t(j)];
+        }
+      }
+      const Mat2 sigma = stress_[k].topLeftCorner<2, 2>();
+      if (self >= 0) {
+        constexpr double two_pi = 2.0 * std::numbers::pi;
+        // Ring: dV_k/dx_k = 2 pi A_k on sigma_k b_kl, column (k, x)
+        for (std::int32_t i = 0; i < length; ++i) {
+          out[pair[i * length + self]].col(0) +=
+              two_pi * area * (sigma * cells.gradient[std::size_t(begin + i)]);
+        }
+        // Hoop area: d(2 pi A_k sigma_tt,k)/dx_m on row (k, x), dA_k/dx_m = A_k b_km or the
+        // row's differences
+        const double hoop_force = two_pi * stress_[k](2, 2);
+        const bool differenced = !area_derivative_[k].empty();
+        for (std::int32_t j = 0; j < length; ++j) {
+          const Vec2 da = differenced ? area_derivative_[k][std::size_t(j)]
+                                      : Vec2(area * cells.gradient[std::size_t(begin + j)]);
+          out[pair[self * length + j]].row(0) += hoop_force * da.transpose();
         }
       }
       for (const Stabilisation& w : stabilisation_) {
@@ -264,14 +325,14 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
           out[pair[i]].diagonal().array() += hessian[std::size_t(i)];
         }
       }
-      // Geometric: sigma_k d(A_k b_kl)/du_m
-      const Mat2 sigma = stress_[k].topLeftCorner<2, 2>();
+      // Geometric: ring_k sigma_k d(A_k b_kl)/du_m (ring_k = 1 in plane strain)
+      const Mat2 ring_sigma = ring ? Mat2(cells.ring[k] * sigma) : sigma;
       if (!row_derivative_.empty() && !row_derivative_[k].empty()) {
         const std::vector<Vec2>& d = row_derivative_[k];
         for (std::int32_t i = 0; i < length * length; ++i) {
           Mat2& block = out[pair[i]];
-          block.col(0) += sigma * d[std::size_t(i * 2)];
-          block.col(1) += sigma * d[std::size_t(i * 2 + 1)];
+          block.col(0) += ring_sigma * d[std::size_t(i * 2)];
+          block.col(1) += ring_sigma * d[std::size_t(i * 2 + 1)];
         }
         continue;
       }
@@ -288,7 +349,7 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
         std::array<Vec2, 3> sg;
         for (int c = 0; c < 3; ++c) {
           grad[std::size_t(c)] = terms.weighted_gradient[std::size_t(c)] * (3.0 / terms.area);
-          sg[std::size_t(c)] = sigma * grad[std::size_t(c)];
+          sg[std::size_t(c)] = ring_sigma * grad[std::size_t(c)];
         }
         for (int i = 0; i < 3; ++i) {
           for (int j = 0; j < 3; ++j) {

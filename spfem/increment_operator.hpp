@@ -14,6 +14,22 @@
 // geometric part from the ELEMENT gradients grad N^e of the triangles that make up row k (weights
 // w_ke = SmoothingCells::triangle_weight). Like MFEM's Operator (Mult / GetGradient) it knows
 // nothing of Newton; ImplicitSolver drives it.
+//
+// Axisymmetric (x = r about x = 0, SmoothingCells::ring = 2 pi x_k filled at x), derived here
+// from the virtual work sum_k V_k sigma_k : delta eps_k with V_k(x) = 2 pi x_k A_k(x) and the
+// hoop strain delta eps_tt,k = delta u_x,k / x_k (spfem/smoothing.hpp internal_forces):
+//   F_int,l = sum_k V_k sigma_k b_kl + delta_lk 2 pi A_k sigma_tt,k e_x,
+// and the increment's hoop strain is u_x,k / x_k(x_n) (linear in u on x_n, as G_k is), in the
+// (2,2) slot of the gradient that goes to the stress update (no spin). With the 4 components
+// (rr, zz, rz, tt) of D_k and B_k^0 = [B_L^0; delta_mk e_x^T / x_k(x_n)], and the left operator
+// V_k [B_L,l; delta_lk e_x^T / x_k(x)] (V_k / x_k = 2 pi A_k), d/du_m of F_int,l is:
+//   material + spin   V_k [B_L,l; delta_lk e_x^T / x_k]^T [D_k B_m^0 + sigma_bar_k B_S,m^0]
+//   ring              2 pi A_k (sigma_k b_kl) e_x^T delta_mk      (dV_k / dx_k = 2 pi A_k)
+//   geometric         2 pi x_k sigma_k d(A_k b_kl)/dx_m            (the plane terms times ring_k)
+//   hoop area         delta_lk e_x 2 pi sigma_tt,k (dA_k/dx_m)^T,
+// with dA_k/dx_m = A_k b_km(x) where row k is made of its triangles' thirds (the area of a cell
+// whose boundary the nodes move through their shape functions changes by int_dOmega N_m n ds =
+// int_Omega grad N_m dA), and by central differences of the row where it has layer terms.
 
 #include <array>
 #include <memory>
@@ -45,7 +61,7 @@ class IncrementOperator {
                     Timers* timers = nullptr, double increment_stabilisation = 0.0);
 
   /// Stress and internal force at the nodal displacement `u`. Returns false when the model
-  /// could not integrate (a non-finite stress).
+  /// could not integrate (a non-finite stress) or, axisymmetric, when `u` puts a node at r <= 0.
   bool evaluate(const std::vector<Vec2>& u);
 
   /// The tangent dF_int/du on the free dofs of `dofs` at the state of the last evaluate(), plus
@@ -75,13 +91,19 @@ class IncrementOperator {
   std::vector<Mat3> stress_;
   std::vector<double> internal_;
   std::vector<Mat3> strain_increment_;
-  std::vector<Mat3> material_tangent_;  // in-plane D_k (xx, yy, xy; engineering shear)
-  std::vector<Vec3> spin_stress_;       // d sigma_k (xx, yy, xy) / d W_12
+  using Mat4 = Eigen::Matrix4d;
+  using Vec4 = Eigen::Vector4d;
+  // D_k on (xx, yy, xy, zz) with engineering shear: the in-plane block and the hoop (zz = tt)
+  // row and column, which only an axisymmetric increment strains
+  std::vector<Mat4> material_tangent_;
+  std::vector<Vec4> spin_stress_;  // d sigma_k (xx, yy, xy, zz) / d W_12
   std::vector<Vec2> internal_force_;
   BlockTangent blocks_;  // the tangent's node pattern, built at the first assembly
   SparseMatrix tangent_;
   // Rows with boundary-layer or wall-strip terms: d(A_k b_kl)/dx_m by central differences
   std::vector<std::vector<Vec2>> row_derivative_;
+  // and, axisymmetric, dA_k/dx_m of those rows (the hoop force's area)
+  std::vector<std::vector<Vec2>> area_derivative_;
   Timers own_timers_;         // where the phases go when the caller passes no Timers
   Timers* timers_ = nullptr;  // mesh (refill), constitutive, assembly
   // The stabilisation energies W of spfem/stiffness_stabilisation.hpp, their forces added to

@@ -70,11 +70,6 @@ Setup make_setup(const Scene& scene) {
 }
 
 IspfemSetup make_implicit_setup(const Scene& scene) {
-  if (scene.formulation == Formulation::axisymmetric) {
-    throw InputError(
-        "formulation = \"axisymmetric\": the implicit SPFEM is plane strain only "
-        "(its tangent has no hoop terms); run this scene through espfem");
-  }
   // Quasi-static: a body set moving cannot be honoured, and a run would "complete" standing
   // still (bar.toml: period NaN)
   for (const Body& b : scene.bodies) {

@@ -144,7 +144,8 @@ NewtonOutcome newton_solve(IncrementOperator& op, const DofMap& dofs, IncrementR
                            Timers& timers, std::vector<Vec2>& u) {
   NewtonOutcome out;
   if (!op.evaluate(u)) {
-    out.why = "the stress update gave a non-finite stress";
+    out.why =
+        "the stress update gave a non-finite stress (or, axisymmetric, a node crossed the axis)";
     return out;
   }
   Eigen::UmfPackLU<SparseMatrix> lu;
@@ -184,7 +185,8 @@ NewtonOutcome newton_solve(IncrementOperator& op, const DofMap& dofs, IncrementR
     }
     const double step = line_search(op, dofs, residual, du, u, relative, out.line_search_halvings);
     if (step == 0.0) {
-      out.why = "the stress update gave a non-finite stress";
+      out.why =
+          "the stress update gave a non-finite stress (or, axisymmetric, a node crossed the axis)";
       return out;
     }
     double u_norm = 0.0;

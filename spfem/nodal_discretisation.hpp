@@ -67,9 +67,11 @@ class NodalDiscretisation {
   }
 
   /// d(A_k b_kl)/dx_m over row k at `x` (the positions of the last refill), by central
-  /// differences of step h (smoothing.hpp row_position_derivative).
-  void row_derivative(std::vector<Vec2>& x, std::size_t k, double h, std::vector<Vec2>& out) {
-    row_position_derivative(mesh_, x, k, layer_depth(), &wall_strips_, h, cells_, out);
+  /// differences of step h (smoothing.hpp row_position_derivative); with `area_out` also
+  /// dA_k/dx_m.
+  void row_derivative(std::vector<Vec2>& x, std::size_t k, double h, std::vector<Vec2>& out,
+                      std::vector<Vec2>* area_out = nullptr) {
+    row_position_derivative(mesh_, x, k, layer_depth(), &wall_strips_, h, cells_, out, area_out);
   }
 
   const duet::SpfemOptions& options() const { return options_; }

@@ -331,7 +331,7 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
 
 void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, std::size_t k,
                              double layer_depth, WallStrips* walls, double h, SmoothingCells& cells,
-                             std::vector<Vec2>& out) {
+                             std::vector<Vec2>& out, std::vector<Vec2>* area_out) {
   const std::vector<Triangle>& triangles = mesh.triangles;
   const bool on_surface = mesh.surface.size() != points.size() || mesh.surface[k] != 0;
   const WallStrips* strips =
@@ -339,6 +339,7 @@ void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, s
   const Index begin = cells.offset[k];
   const Index length = cells.offset[k + 1] - begin;
   out.assign(std::size_t(length * length * 2), Vec2::Zero());
+  if (area_out != nullptr) area_out->assign(std::size_t(length), Vec2::Zero());
   const auto retriangulate = [&] {
     for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
       const Index e = cells.node_triangles.triangle[i];
@@ -367,6 +368,7 @@ void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, s
       fill_row(triangles, points, k, layer_depth, on_surface, strips, cells);
       for (Index jl = 0; jl < length; ++jl)
         forward[jl] = cells.area[k] * cells.gradient[begin + jl];
+      const double forward_area = cells.area[k];
       move(m, -2.0 * d);
       retriangulate();
       fill_row(triangles, points, k, layer_depth, on_surface, strips, cells);
@@ -374,6 +376,8 @@ void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, s
         out[std::size_t((jl * length + jm) * 2 + c)] =
             (forward[jl] - cells.area[k] * cells.gradient[begin + jl]) / (2.0 * h);
       }
+      if (area_out != nullptr)
+        (*area_out)[std::size_t(jm)][c] = (forward_area - cells.area[k]) / (2.0 * h);
       move(m, d);
     }
   }

@@ -106,10 +106,12 @@ void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& poin
 /// wedge and wall strips included; a free-slip strip's wall points move with their nodes, a
 /// no-slip strip's stay). `cells` must have been filled from `mesh` at `points`; `points` and the
 /// strips' wall points are perturbed and restored, and row k is refilled at the end (bitwise as
-/// before). Serial: it writes the triangle terms shared with the neighbouring rows.
+/// before). Serial: it writes the triangle terms shared with the neighbouring rows. With
+/// `area_out`, also (*area_out)[m] = dA_k / dx_m by the same differences (an axisymmetric row's
+/// hoop force 2 pi A_k sigma_tt).
 void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, std::size_t k,
                              double layer_depth, WallStrips* walls, double h, SmoothingCells& cells,
-                             std::vector<Vec2>& out);
+                             std::vector<Vec2>& out, std::vector<Vec2>* area_out = nullptr);
 
 /// L_k(i, j) = dv_i/dx_j = sum_l v_l,i b_kl,j (+ sum_w v_w,i c_kw,j: wall strips) at every node
 /// (zero for a node in no triangle).

@@ -2,7 +2,8 @@
 // against a central-difference Jacobian of the assembled internal force, on an irregular cloud
 // with a non-trivial stress and a finite displacement (so the spin and the geometric terms are
 // exercised), for elasticity, Tresca on its surface and on an edge, and non-associated
-// Drucker-Prager (../shared/notes/implicit-spfem.md: "the test that decides").
+// Drucker-Prager (../shared/notes/implicit-spfem.md: "the test that decides"); and the same for an
+// axisymmetric cloud (x = r: ring volumes, hoop strain and hoop force).
 #include "spfem/increment_operator.hpp"
 
 #include <gtest/gtest.h>
@@ -65,13 +66,14 @@ std::vector<Vec2> displacement(const Particles& p, const Mat2& g, double noise, 
 /// Relative Frobenius distance between the assembled tangent and the central-difference Jacobian
 /// of F_int, every dof free.
 double tangent_error(Case& c, bool boundary_layer, double stiffness_stabilisation = 0.0,
-                     std::vector<NodeBoundary> walls = {}, double increment_stabilisation = 0.0) {
+                     std::vector<NodeBoundary> walls = {}, double increment_stabilisation = 0.0,
+                     bool axisymmetric = false) {
   std::vector<std::unique_ptr<constitutive::Model>> models;
   models.push_back(std::move(c.model));
   duet::SpfemOptions options;
   options.boundary_layer = boundary_layer;
   options.stiffness_stabilisation = stiffness_stabilisation;
-  NodalDiscretisation discretisation(options, kSpacing, std::move(walls));
+  NodalDiscretisation discretisation(options, kSpacing, std::move(walls), axisymmetric);
   discretisation.initialise(c.start.position);
   discretisation.place_boundaries(0.0, false);
   discretisation.update(c.start.position);
@@ -260,6 +262,124 @@ TEST(IncrementOperator, NonAssociatedDruckerPragerTangentMatchesFiniteDifference
   c.u = displacement(c.start, g, 1e-3, 14);
   const double error = tangent_error(c, true);
   std::printf("drucker-prager: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+// Axisymmetric (x = r about x = 0): the cloud moved out by `shift` so that r runs from about
+// `shift` + 0.3 dp to 6 dp across it (the rings, the hoop strain u_r / r and the hoop force
+// change from node to node), the increment's displacement taken anew on the moved cloud.
+void move_off_axis(Case& c, double shift, const Mat2& g, double noise, unsigned seed) {
+  for (Vec2& x : c.start.position) x.x() += shift;
+  c.u = displacement(c.start, g, noise, seed);
+}
+
+TEST(IncrementOperator, AxisymmetricElasticTangentMatchesFiniteDifferenceJacobian) {
+  // Arrange: elastic_case's stresses (sigma_tt included) on a cloud at r >= 0.5 m
+  Case c = elastic_case();
+  move_off_axis(c, 0.2, (Mat2() << 0.01, 0.03, -0.02, 0.005).finished(), 2e-3, 11);
+  // Act
+  const double error = tangent_error(c, false, 0.0, {}, 0.0, true);
+  // Assert
+  std::printf("axisymmetric elastic, no layer: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, AxisymmetricElasticTangentMatchesFiniteDifferenceJacobianWithLayer) {
+  // Arrange: as above, with the boundary layer (its rows' dA_k/dx by differences)
+  Case c = elastic_case();
+  move_off_axis(c, 0.2, (Mat2() << 0.01, 0.03, -0.02, 0.005).finished(), 2e-3, 11);
+  // Act
+  const double error = tangent_error(c, true, 0.0, {}, 0.0, true);
+  // Assert
+  std::printf("axisymmetric elastic, boundary layer: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, AxisymmetricStabilisationHessiansMatchFiniteDifferenceJacobian) {
+  // Arrange: both stabilisation energies, their moduli weighed by the rings
+  Case c = elastic_case();
+  move_off_axis(c, 0.2, (Mat2() << 0.01, 0.03, -0.02, 0.005).finished(), 2e-3, 11);
+  for (Vec2& x : c.start.displacement) x = Vec2(0.03, -0.02);
+  // Act
+  const double error = tangent_error(c, true, 0.5, {}, 2.0, true);
+  // Assert
+  std::printf("axisymmetric elastic, layer, both stabilisations: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, AxisymmetricTangentOnTheAxisWallMatchesFiniteDifferenceJacobian) {
+  // Arrange: the cloud's first column at r = dp / 2 against a symmetry wall on the axis x = 0
+  // and its first row on a no-slip base y = 0 (wall strips in the rows at both); the nodes at
+  // the axis move radially too, so their hoop strain u_r / r is the cloud's largest
+  Case c = elastic_case();
+  NodeBoundary axis;
+  axis.name = "axis";
+  axis.polyline = {Vec2(0.0, -1.0), Vec2(0.0, 6.0)};
+  axis.condition = NodeCondition::symmetry;
+  NodeBoundary base;
+  base.name = "base";
+  base.polyline = {Vec2(-1.0, 0.0), Vec2(7.0, 0.0)};
+  base.condition = NodeCondition::bonded;
+  for (std::size_t i = 0; i < c.start.size(); ++i) {
+    if (i % kNx == 0) c.start.position[i].x() = 0.5 * kSpacing;
+    if (i < std::size_t(kNx)) c.start.position[i].y() = 0.5 * kSpacing;
+  }
+  c.u = displacement(c.start, (Mat2() << 0.01, 0.03, -0.02, 0.005).finished(), 2e-3, 11);
+  // Act
+  const double error = tangent_error(c, true, 0.0, {axis, base}, 0.0, true);
+  // Assert
+  std::printf("axisymmetric elastic, layer, axis and base wall strips: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, AxisymmetricTrescaOnItsSurfaceTangentMatchesFiniteDifferenceJacobian) {
+  // Arrange: every node at yield in r-z shear (sigma_rz = c_u, sigma_rr = sigma_zz = sigma_tt =
+  // -p) on a cloud at r >= 0.5 m, sheared further and stretched radially (hoop strain u_r / r)
+  Case c;
+  c.model = constitutive::make_model("tresca", {{"E", 100.0}, {"nu", 0.45}, {"cu", 2.0}}, "test");
+  c.start = cloud(*c.model, 4);
+  for (Mat3& sigma : c.start.stress) {
+    sigma = -5.0 * Mat3::Identity();
+    sigma(0, 1) = sigma(1, 0) = 2.0;
+  }
+  move_off_axis(c, 0.2, (Mat2() << 0.005, 0.02, 0.0, 0.0).finished(), 1e-3, 12);
+  // Act
+  const double error = tangent_error(c, true, 0.0, {}, 0.0, true);
+  // Assert
+  std::printf("axisymmetric tresca surface: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, AxisymmetricTrescaYieldingInHoopTangentMatchesFiniteDifferenceJacobian) {
+  // Arrange: sigma_tt - sigma_rr = 2 c_u at yield (the cavity's state), expanded radially: the
+  // hoop row of D_k carries the return
+  Case c;
+  c.model = constitutive::make_model("tresca", {{"E", 100.0}, {"nu", 0.45}, {"cu", 2.0}}, "test");
+  c.start = cloud(*c.model, 6);
+  for (Mat3& sigma : c.start.stress) sigma = Vec3(-4.0, -2.0, 0.0).asDiagonal();
+  move_off_axis(c, 0.2, (Mat2() << 0.01, 0.0, 0.0, 0.0).finished(), 1e-3, 13);
+  for (std::size_t i = 0; i < c.u.size(); ++i) c.u[i].x() += 0.01 * kSpacing;  // u_r / r > 0
+  // Act
+  const double error = tangent_error(c, true, 0.0, {}, 0.0, true);
+  // Assert
+  std::printf("axisymmetric tresca, hoop yield: %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(IncrementOperator, AxisymmetricTrescaOnAnEdgeTangentMatchesFiniteDifferenceJacobian) {
+  // Arrange: sigma_rr = sigma_tt = c_u, sigma_zz = -c_u (the radial and hoop stresses equal, at
+  // yield: triaxial compression about the axis), stretched equally in r and theta (u_r = 0.005 r)
+  // and compressed along z: the return is onto the edge where two planes of Tresca meet, with
+  // the hoop stress one of its two equal principal stresses
+  Case c;
+  c.model = constitutive::make_model("tresca", {{"E", 100.0}, {"nu", 0.45}, {"cu", 2.0}}, "test");
+  c.start = cloud(*c.model, 6);
+  for (Mat3& sigma : c.start.stress) sigma = Vec3(2.0, -2.0, 2.0).asDiagonal();
+  move_off_axis(c, 0.2, (Mat2() << 0.005, 0.0, 0.0, -0.03).finished(), 1e-3, 13);
+  // Act
+  const double error = tangent_error(c, true, 0.0, {}, 0.0, true);
+  // Assert
+  std::printf("axisymmetric tresca edge: %.2e\n", error);
   EXPECT_LT(error, 1e-6);
 }
 
