@@ -34,6 +34,7 @@
 #include "common/run_checks.hpp"
 #include "common/state_bag.hpp"
 #include "common/strength_reduction.hpp"
+#include "common/units.hpp"
 
 namespace duet {
 
@@ -399,7 +400,8 @@ std::optional<Failure> Run::check_step(double previous_time) const {
   }
   // A quasi-static run's velocities are increments over a load step, not inertia.
   if (inertial_) {
-    if (auto reason = energy_runaway(scene_.checks, energy_.end, budget_)) {
+    if (auto reason =
+            energy_runaway(scene_.checks, energy_.end, budget_, energy_unit(scene_.formulation))) {
       return Failure{*reason, time_};
     }
   }

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "common/geometry.hpp"
+#include "common/units.hpp"
 #include "constitutive/registry.hpp"
 
 namespace duet {
@@ -177,13 +178,13 @@ void add_load_drop_warnings(const Scene& scene, const std::vector<BoundaryLoad>&
     if (drop.fraction <= 0.05) continue;
     char text[640];
     std::snprintf(text, sizeof text,
-                  "load-drop: the load on %s fell %.0f %% below its maximum, from %.4g N/m at t "
-                  "= %.4g s to %.4g N/m at t = %.4g s, while it was driven, though no material "
+                  "load-drop: the load on %s fell %.0f %% below its maximum, from %.4g %s at t "
+                  "= %.4g s to %.4g %s at t = %.4g s, while it was driven, though no material "
                   "of the scene can soften and no strength reduction runs: a perfectly plastic "
                   "load does not fall. Look at the frames there (a mesh snap, contact lost, a "
                   "dynamic overshoot); the measures after it are in doubt",
-                  b.name.c_str(), 100.0 * drop.fraction, drop.peak, drop.peak_time, drop.low,
-                  drop.low_time);
+                  b.name.c_str(), 100.0 * drop.fraction, drop.peak, force_unit(scene.formulation),
+                  drop.peak_time, drop.low, force_unit(scene.formulation), drop.low_time);
     out.emplace_back(text);
   }
 }
@@ -306,13 +307,13 @@ std::vector<std::string> run_warnings(const Scene& scene, bool inertial,
     if (v > 0.0 && energy.end > bound) {
       const KineticEnergyCarriers& c = energy.end_carriers;
       std::snprintf(text, sizeof text,
-                    "not at rest while driven: the soil's kinetic energy at t = %g s, %.3g J/m, is "
+                    "not at rest while driven: the soil's kinetic energy at t = %g s, %.3g %s, is "
                     "%.3g times what all of it would have at the fastest driven speed, %.3g m/s: "
                     "it moves faster than anything drives it (a collapse, or particles thrown off; "
                     "%zu of %zu particles carry half of it, the most, particle %zu at (%.4g, %.4g) "
                     "m, at %.3g m/s)",
-                    end_time, energy.end, energy.end / bound, v, c.half, particles, c.largest,
-                    c.position.x(), c.position.y(), c.speed);
+                    end_time, energy.end, energy_unit(scene.formulation), energy.end / bound, v,
+                    c.half, particles, c.largest, c.position.x(), c.position.y(), c.speed);
       out.emplace_back(text);
     }
   }

@@ -134,18 +134,18 @@ std::optional<StateProblem> StateChecks::check_lift_off(const Particles& particl
 }
 
 std::optional<std::string> energy_runaway(const RunCheckOptions& options, double kinetic,
-                                          const EnergyBudget& budget) {
+                                          const EnergyBudget& budget, const char* unit) {
   if (options.kinetic_energy_factor <= 0.0 || budget.incomplete()) return std::nullopt;
   const double limit = options.kinetic_energy_factor * std::max(budget.input(), 0.0);
   if (kinetic <= limit || kinetic <= budget.floor()) return std::nullopt;
   char buffer[320];
   std::snprintf(buffer, sizeof buffer,
-                "kinetic energy %.4g J/m exceeds %g x the energy put in (%.4g J/m: gravity %.4g, "
+                "kinetic energy %.4g %s exceeds %g x the energy put in (%.4g %s: gravity %.4g, "
                 "walls and rigid bodies %.4g, loads %.4g, initial kinetic %.4g, initial elastic "
                 "%.4g): the method made energy (checks.kinetic_energy_factor)",
-                kinetic, options.kinetic_energy_factor, budget.input(), budget.gravity_work(),
-                budget.boundary_work(), budget.load_work(), budget.initial_kinetic(),
-                budget.initial_elastic());
+                kinetic, unit, options.kinetic_energy_factor, budget.input(), unit,
+                budget.gravity_work(), budget.boundary_work(), budget.load_work(),
+                budget.initial_kinetic(), budget.initial_elastic());
   return std::string(buffer);
 }
 

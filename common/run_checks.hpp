@@ -47,8 +47,9 @@ class StateChecks {
 };
 
 /// Kinetic energy above kinetic_energy_factor x the energy put in, and above the budget's floor:
-/// the reason, or nothing (also nothing when the check is off or the budget incomplete).
+/// the reason, or nothing (also nothing when the check is off or the budget incomplete). `unit`:
+/// the energies' unit in the message (energy_unit of the scene's formulation).
 std::optional<std::string> energy_runaway(const RunCheckOptions& options, double kinetic,
-                                          const EnergyBudget& budget);
+                                          const EnergyBudget& budget, const char* unit = "J/m");
 
 }  // namespace duet
