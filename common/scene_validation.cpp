@@ -160,6 +160,14 @@ class Checker {
       }
     };
     for (const Body& b : scene_.bodies) left_of_axis(b.outline, "body." + b.name);
+    // A load is shared equally by its particles (common/scene_loads.hpp), which about an axis
+    // would put the same force on a ring at r = dp / 2 as on one ten times as large
+    for (const Load& l : scene_.loads) {
+      fail("load." + l.name,
+           "a load in an axisymmetric scene (its equal share per particle does "
+           "not follow the rings' sizes)",
+           "a plane-strain scene for loads, or a rigid body or wall to drive an axisymmetric one");
+    }
     bool axis_wall = false;
     for (const Wall& w : scene_.walls) {
       bool on_axis = w.condition == WallCondition::symmetry && !w.radial;

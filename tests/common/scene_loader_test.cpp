@@ -202,6 +202,13 @@ TEST(SceneLoader, AnAxisymmetricSceneLiesRightOfTheAxisHeldOnItAndSamplesRings) 
             std::string::npos);
   EXPECT_NE(refusal(axisymmetric + axis, {"gravity=[1.0, -9.81]"}).find("radial component"),
             std::string::npos);
+  const std::string load =
+      "\n[load.push]\nbody = \"column\"\nmin = [0.0, 0.09]\nmax = [0.2, 0.1]\n"
+      "force = [[0.0, 0.0, -1.0]]\n";
+  EXPECT_EQ(refusal(kScene + load), "");
+  EXPECT_NE(refusal(axisymmetric + axis + load).find("load.push: a load in an axisymmetric scene"),
+            std::string::npos)
+      << refusal(axisymmetric + axis + load);
   // Each particle stands for its ring: mass rho 2 pi r dp^2 (kg), r its centre's x
   const Scene scene = load_scene_from_string(axisymmetric + axis, "scene.toml");
   EXPECT_EQ(scene.formulation, Formulation::axisymmetric);
