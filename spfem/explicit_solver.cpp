@@ -90,7 +90,6 @@ void ExplicitSolver::initialise(Particles& particles) {
   discretisation_.initialise(particles.position);
   boundary_force_.assign(setup_.boundaries.size(), Vec2::Zero());
   velocity_gradient_.assign(n, Mat2::Zero());
-  hoop_rate_.assign(setup_.axisymmetric ? n : 0, 0.0);
   wave_speed_.assign(n, 0.0);
   block_modulus_.assign(n, 0.0);
   stiffening_.assign(n, 0.0);
@@ -248,7 +247,7 @@ void ExplicitSolver::update_stress(Particles& particles, double dt) {
     const constitutive::Model& model = *setup_.models[m];
     const std::span<double> internal(particles.internal.of(i), n_internal_[m]);
     if (cells().area[i] > 0.0) {
-      const Mat3 l = full_velocity_gradient(i);
+      const Mat3 l = full_velocity_gradient(particles, i);
       const Mat3 d = sym(l);
       // Zhang 2018 slides, explicit cycle step 5: sigma_dot = H(eps_dot, kappa), Jaumann rate
       constitutive::update_stress(model, d * dt, skew(l) * dt, particles.stress[i], internal);
@@ -345,10 +344,10 @@ void ExplicitSolver::assemble_forces(const Particles& particles) {
       const double area = cells().area[k];
       if (area > 0.0) {
         const double eta = b1 * particles.density[k] * wave_speed_[k] * std::sqrt(area);
-        const double p = eta * full_velocity_gradient(k).trace();
+        const double p = eta * full_velocity_gradient(particles, k).trace();
         viscous_stress_[k](0, 0) += p;
         viscous_stress_[k](1, 1) += p;
-        if (!hoop_rate_.empty()) viscous_stress_[k](2, 2) += p;  // the hoop force carries it
+        if (setup_.axisymmetric) viscous_stress_[k](2, 2) += p;  // the hoop force carries it
       }
     }
   }
@@ -470,7 +469,6 @@ void ExplicitSolver::insert_nodes(Particles& particles) {
     mean(stiffening_, a);
   }
   velocity_gradient_.resize(n, Mat2::Zero());
-  if (!hoop_rate_.empty()) hoop_rate_.resize(n, 0.0);
   internal_force_.resize(n, Vec2::Zero());
   stabilisation_force_.resize(n, Vec2::Zero());
   stiffness_force_.resize(n, Vec2::Zero());
@@ -507,13 +505,6 @@ double ExplicitSolver::step(Particles& particles, double time) {
     // Zhang 2018 slides, explicit cycle step 4: smoothed strain (rate) of the nodes, before dt,
     // which the stress increment it gives also bounds
     smoothed_velocity_gradients(cells(), particles.velocity, velocity_gradient_);
-    if (!hoop_rate_.empty()) {
-      // Axisymmetric: the hoop rate of stretching v_r / r at the node (its ring's circumference
-      // grows with its radius); the nodes stand off the axis (NodalDiscretisation::fill_ring)
-      for (std::size_t k = 0; k < hoop_rate_.size(); ++k) {
-        hoop_rate_[k] = particles.velocity[k].x() / particles.position[k].x();
-      }
-    }
     dt = time_step(particles);
     update_stress(particles, dt);
   }

@@ -112,11 +112,13 @@ class ExplicitSolver {
 
  private:
   /// Node k's velocity gradient in 3-D: the smoothed in-plane L_k and, axisymmetric, the hoop
-  /// rate v_r,k / r_k in the out-of-plane (theta theta) slot.
-  Mat3 full_velocity_gradient(std::size_t k) const {
+  /// rate of stretching v_r,k / r_k in the out-of-plane (theta theta) slot (its ring's
+  /// circumference grows with its radius; the nodes stand off the axis,
+  /// NodalDiscretisation::fill_ring).
+  Mat3 full_velocity_gradient(const Particles& particles, std::size_t k) const {
     Mat3 l = Mat3::Zero();
     l.topLeftCorner<2, 2>() = velocity_gradient_[k];
-    if (!hoop_rate_.empty()) l(2, 2) = hoop_rate_[k];
+    if (setup_.axisymmetric) l(2, 2) = particles.velocity[k].x() / particles.position[k].x();
     return l;
   }
   double time_step(const Particles& particles);
@@ -135,7 +137,6 @@ class ExplicitSolver {
   std::vector<std::size_t> n_internal_;  // per material
 
   std::vector<Mat2> velocity_gradient_;
-  std::vector<double> hoop_rate_;   // axisymmetric: v_r,k / r_k (1/s); empty in plane strain
   std::vector<double> wave_speed_;  // per node, m/s
   std::vector<double>
       block_modulus_;  // per node: M = |lambda| + 2 G or the model's tangent bound (Pa)

@@ -269,12 +269,9 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
       // dF_l/du_m for l = column[begin + i], m = column[begin + j]: block pair[i * length + j]
       const std::int32_t* pair = blocks_.row_pairs(k);
       // Node k's own entry of its row (the hoop terms sit there), -1 in plane strain
-      std::int32_t self = -1;
-      if (ring) {
-        for (std::int32_t j = 0; j < length; ++j) {
-          if (std::size_t(cells.column[std::size_t(begin + j)]) == k) self = j;
-        }
-      }
+      std::int32_t self =
+          ring ? find_in_row(&cells.column[std::size_t(begin)], length, std::int32_t(k)) : -1;
+      if (self == length) self = -1;
       // Material and spin: V_k B_l^T [D_k B_m^0 + sigma_bar_k B_S,m^0] (the hoop rows 1 / r_k
       // at x_n on the right, at x on the left: header)
       const double hoop_start = ring ? 1.0 / start_.position[k].x() : 0.0;

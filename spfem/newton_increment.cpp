@@ -138,14 +138,17 @@ std::string singular_tangent(const SparseMatrix& tangent, const DofMap& dofs,
   return why.str();
 }
 
+// Why an evaluation of the operator failed (IncrementOperator::evaluate returned false)
+constexpr const char* kEvaluationFailed =
+    "the stress update gave a non-finite stress (or, axisymmetric, a node crossed the axis)";
+
 NewtonOutcome newton_solve(IncrementOperator& op, const DofMap& dofs, IncrementResidual& residual,
                            const std::vector<double>& mass_diagonal,
                            const duet::SpfemImplicitOptions& o, const std::vector<Vec2>& positions,
                            Timers& timers, std::vector<Vec2>& u) {
   NewtonOutcome out;
   if (!op.evaluate(u)) {
-    out.why =
-        "the stress update gave a non-finite stress (or, axisymmetric, a node crossed the axis)";
+    out.why = kEvaluationFailed;
     return out;
   }
   Eigen::UmfPackLU<SparseMatrix> lu;
@@ -185,8 +188,7 @@ NewtonOutcome newton_solve(IncrementOperator& op, const DofMap& dofs, IncrementR
     }
     const double step = line_search(op, dofs, residual, du, u, relative, out.line_search_halvings);
     if (step == 0.0) {
-      out.why =
-          "the stress update gave a non-finite stress (or, axisymmetric, a node crossed the axis)";
+      out.why = kEvaluationFailed;
       return out;
     }
     double u_norm = 0.0;

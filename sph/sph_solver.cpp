@@ -630,7 +630,7 @@ double SphSolver::step(Particles& particles, double time) {
     advance(particles, dt);
     // Axisymmetric: the axis's symmetry plane holds the rings off r = 0; a particle that reached
     // it fails here rather than becoming its mirror image (a ring through the axis)
-    if (setup_.axisymmetric) check_off_axis(particles);
+    check_off_axis(particles);
     reflect_across_symmetry_planes(particles);
   }
   counters_.penetrations_last_step = penetrations_;

@@ -2,7 +2,6 @@
 // pair loop's inputs copied in working order (soil sorted by cell, ghosts, dummies), and the
 // Verlet list rebuilt when something has moved half the skin.
 #include <algorithm>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -119,9 +118,8 @@ double SphSolver::gather(const Particles& particles) {
   // volumes m / rho, the stress (and eq 29's R) over rho^2 2 pi |r| (sph/README.md,
   // "Axisymmetric")
   const bool ring = setup_.axisymmetric;
-  double r_min = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(max : moved2) reduction(&& : unchanged) \
-    reduction(min : r_min) if (n >= kParallelMin)
+    if (n >= kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = order_[k];
     const Vec2 x = particles.position[i];
@@ -132,7 +130,6 @@ double SphSolver::gather(const Particles& particles) {
     const double ring_over = ring ? 1.0 / ring_weight(x.x()) : 1.0;
     const double inv_rho2 = ring ? ring_over / (rho * rho) : 1.0 / (rho * rho);
     const double m = particles.mass[i];
-    r_min = std::min(r_min, x.x());
     work_[k] = {x.x(),
                 x.y(),
                 v.x(),
@@ -149,7 +146,6 @@ double SphSolver::gather(const Particles& particles) {
     }
     if (reference) moved2 = std::max(moved2, (x - work_reference_[k]).squaredNorm());
   }
-  if (ring && !(r_min > 0.0)) check_off_axis(particles);
   for (std::size_t g = 0; g < n_ghost; ++g) {  // a few hundred: serial
     // Ghost: the mirrored state of its soil particle (Peng 2015 section 4.2); a candidate out of
     // reach carries no mass, so it adds nothing to any sum.

@@ -22,14 +22,14 @@ constexpr int kRows = 14;            // z from 0 to 1.4 m
 
 /// nx by ny particles on a square lattice of spacing dp from the axis (x = r >= 0), each the
 /// ring it sweeps (axisymmetric) or a plane particle per metre (plane strain).
-Particles lattice(bool ring) {
+Particles lattice(bool ring, int columns = kColumns, int rows = kRows, double dp = kSpacing) {
   Particles p;
-  p.resize(static_cast<std::size_t>(kColumns * kRows));
+  p.resize(static_cast<std::size_t>(columns * rows));
   std::size_t k = 0;
-  for (int j = 0; j < kRows; ++j) {
-    for (int i = 0; i < kColumns; ++i, ++k) {
-      p.position[k] = Vec2((i + 0.5) * kSpacing, (j + 0.5) * kSpacing);
-      const double area = kSpacing * kSpacing;
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i, ++k) {
+      p.position[k] = Vec2((i + 0.5) * dp, (j + 0.5) * dp);
+      const double area = dp * dp;
       const double volume = ring ? 2.0 * std::numbers::pi * p.position[k].x() * area : area;
       p.volume[k] = volume;
       p.density[k] = kDensity;
@@ -172,22 +172,8 @@ TEST(SphAxisymmetric, ElasticCylinderCompressedAxiallyCarriesYoungsModulusTimesS
   // lateral surface is free, so the stress is uniaxial (simple compression): F = E eps pi R^2
   const double dp = 0.1, radius = 1.0, height = 1.0;
   const double young = 1.0e6, speed = 0.01, ramp = 0.2, end = 1.0;
-  Particles rings;
-  const int nr = static_cast<int>(std::lround(radius / dp));
-  const int nz = static_cast<int>(std::lround(height / dp));
-  rings.resize(static_cast<std::size_t>(nr * nz));
-  for (int j = 0, k = 0; j < nz; ++j) {
-    for (int i = 0; i < nr; ++i, ++k) {
-      const Vec2 x((i + 0.5) * dp, (j + 0.5) * dp);
-      const double volume = 2.0 * std::numbers::pi * x.x() * dp * dp;
-      rings.position[k] = x;
-      rings.volume[k] = volume;
-      rings.density[k] = kDensity;
-      rings.mass[k] = kDensity * volume;
-      rings.material[k] = 0;
-      rings.body[k] = 0;
-    }
-  }
+  Particles rings = lattice(true, static_cast<int>(std::lround(radius / dp)),
+                            static_cast<int>(std::lround(height / dp)), dp);
   SphSetup s;
   s.spacing = dp;
   s.axisymmetric = true;
