@@ -194,24 +194,32 @@ TEST(IncrementOperator, IncrementStabilisationResistsOnlyTheIncrementsHourglassP
   EXPECT_GT(largest, 1e-3);
 }
 
+/// A straight wall from a to b with `condition`.
+NodeBoundary wall_along(const char* name, const Vec2& a, const Vec2& b, NodeCondition condition) {
+  NodeBoundary wall;
+  wall.name = name;
+  wall.polyline = {a, b};
+  wall.condition = condition;
+  return wall;
+}
+
+/// The cloud's first column and row onto the lattice, dp / 2 from walls along x = 0 and y = 0.
+void against_walls(Case& c) {
+  for (std::size_t i = 0; i < c.start.size(); ++i) {
+    if (i % kNx == 0) c.start.position[i].x() = 0.5 * kSpacing;
+    if (i < std::size_t(kNx)) c.start.position[i].y() = 0.5 * kSpacing;
+  }
+}
+
 TEST(IncrementOperator, TangentWithWallStripsMatchesFiniteDifferenceJacobian) {
   // A no-slip wall along x = 0 and a free-slip one along y = 0 (the cloud's first column and
   // row lie within reach of them): their wall strips enter the rows of the nodes at the walls
   Case c = elastic_case();
-  NodeBoundary clamp;
-  clamp.name = "clamp";
-  clamp.polyline = {Vec2(0.0, -1.0), Vec2(0.0, 6.0)};
-  clamp.condition = NodeCondition::bonded;
-  NodeBoundary floor;
-  floor.name = "floor";
-  floor.polyline = {Vec2(-1.0, 0.0), Vec2(7.0, 0.0)};
-  floor.condition = NodeCondition::smooth;
-  for (std::size_t i = 0; i < c.start.size(); ++i) {
-    // the first column and row onto the lattice, at dp / 2 from the walls
-    if (i % kNx == 0) c.start.position[i].x() = 0.5 * kSpacing;
-    if (i < std::size_t(kNx)) c.start.position[i].y() = 0.5 * kSpacing;
-  }
-  const double error = tangent_error(c, true, 0.0, {clamp, floor});
+  against_walls(c);
+  const double error =
+      tangent_error(c, true, 0.0,
+                    {wall_along("clamp", Vec2(0.0, -1.0), Vec2(0.0, 6.0), NodeCondition::bonded),
+                     wall_along("floor", Vec2(-1.0, 0.0), Vec2(7.0, 0.0), NodeCondition::smooth)});
   std::printf("elastic, layer, wall strips: %.2e\n", error);
   EXPECT_LT(error, 1e-6);
 }
@@ -312,21 +320,14 @@ TEST(IncrementOperator, AxisymmetricTangentOnTheAxisWallMatchesFiniteDifferenceJ
   // and its first row on a no-slip base y = 0 (wall strips in the rows at both); the nodes at
   // the axis move radially too, so their hoop strain u_r / r is the cloud's largest
   Case c = elastic_case();
-  NodeBoundary axis;
-  axis.name = "axis";
-  axis.polyline = {Vec2(0.0, -1.0), Vec2(0.0, 6.0)};
-  axis.condition = NodeCondition::symmetry;
-  NodeBoundary base;
-  base.name = "base";
-  base.polyline = {Vec2(-1.0, 0.0), Vec2(7.0, 0.0)};
-  base.condition = NodeCondition::bonded;
-  for (std::size_t i = 0; i < c.start.size(); ++i) {
-    if (i % kNx == 0) c.start.position[i].x() = 0.5 * kSpacing;
-    if (i < std::size_t(kNx)) c.start.position[i].y() = 0.5 * kSpacing;
-  }
+  against_walls(c);
   c.u = displacement(c.start, (Mat2() << 0.01, 0.03, -0.02, 0.005).finished(), 2e-3, 11);
   // Act
-  const double error = tangent_error(c, true, 0.0, {axis, base}, 0.0, true);
+  const double error =
+      tangent_error(c, true, 0.0,
+                    {wall_along("axis", Vec2(0.0, -1.0), Vec2(0.0, 6.0), NodeCondition::symmetry),
+                     wall_along("base", Vec2(-1.0, 0.0), Vec2(7.0, 0.0), NodeCondition::bonded)},
+                    0.0, true);
   // Assert
   std::printf("axisymmetric elastic, layer, axis and base wall strips: %.2e\n", error);
   EXPECT_LT(error, 1e-6);
