@@ -163,23 +163,23 @@ double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
   // mass, and sqrt(A_k) / c (the former l_min / c) cut dt by the ratio of the two. Two O(nnz)
   // passes, no allocation once sized: w_k = A_k M_k sum_m |b_km| per cell, then each row l
   // gathers w_k |b_kl| through the transpose map.
-  // Axisymmetric: V_k = 2 pi r_k A_k for A_k, and node k's strain has the hoop row
-  // delta u_r,k / r_k besides, so |B_km| <= |b_km| + delta_km / r_k: w_k = V_k M_k (sum_m |b_km|
-  // + 1 / r_k), and row l gathers w_l / r_l besides.
+  // Axisymmetric: V_k = 2 pi r_k A_k for A_k, and node k's strain has the hoop row h_km
+  // besides, so |B_km| <= |b_km| + |h_km| takes the place of |b_km|.
   const std::size_t n = cells().area.size();
-  const bool ring = !cells().ring.empty();
+  const bool hoop = !cells().hoop.empty();
   cell_weight_.resize(n);
   gradient_norm_.resize(cells().gradient.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::size_t k = 0; k < n; ++k) {
     double row_sum = 0.0;
     for (std::int32_t e = cells().offset[k]; e < cells().offset[k + 1]; ++e) {
-      const double norm = cells().gradient[static_cast<std::size_t>(e)].norm();  // |b_km|
-      gradient_norm_[static_cast<std::size_t>(e)] = norm;
+      const auto entry = static_cast<std::size_t>(e);
+      double norm = cells().gradient[entry].norm();  // |b_km|
+      if (hoop) norm += std::abs(cells().hoop[entry]);
+      gradient_norm_[entry] = norm;
       row_sum += norm;
     }
-    const double hoop = ring ? 1.0 / particles.position[k].x() : 0.0;
-    cell_weight_[k] = cell_volume(cells(), k) * block_modulus_[k] * (row_sum + hoop);
+    cell_weight_[k] = cell_volume(cells(), k) * block_modulus_[k] * row_sum;
   }
   double omega_squared = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : omega_squared) if (n > kParallelMin)
@@ -191,7 +191,6 @@ double ExplicitSolver::gershgorin_time_step(const Particles& particles) {
       const auto kl = static_cast<std::size_t>(cells().transpose[static_cast<std::size_t>(e)]);
       bound += cell_weight_[k] * gradient_norm_[kl];
     }
-    if (ring) bound += cell_weight_[l] / particles.position[l].x();
     omega_squared = std::max(omega_squared, std::abs(bound) / particles.mass[l]);
   }
   if (!(omega_squared > 0.0)) {

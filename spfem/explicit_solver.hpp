@@ -118,7 +118,8 @@ class ExplicitSolver {
   Mat3 full_velocity_gradient(const Particles& particles, std::size_t k) const {
     Mat3 l = Mat3::Zero();
     l.topLeftCorner<2, 2>() = velocity_gradient_[k];
-    if (setup_.axisymmetric) l(2, 2) = particles.velocity[k].x() / particles.position[k].x();
+    // Axisymmetric: the smoothed hoop rate sum_l v_r,l h_kl (spfem/smoothing.hpp)
+    if (setup_.axisymmetric) l(2, 2) = smoothed_hoop_rate(cells(), particles.velocity, k);
     return l;
   }
   double time_step(const Particles& particles);

@@ -137,9 +137,9 @@ void IncrementOperator::update_stresses(const std::vector<Vec2>& u) {
     }
     Mat3 l = Mat3::Zero();
     l.topLeftCorner<2, 2>() = g;
-    // Axisymmetric: the hoop strain u_r,k / r_k(x_n), linear in u on x_n as G_k is (a ring's
-    // circumference grows with its radius; it spins nothing)
-    if (ring) l(2, 2) = u[k].x() / start_.position[k].x();
+    // Axisymmetric: the smoothed hoop strain sum_l u_r,l h_kl(x_n), linear in u on x_n as G_k
+    // is (a ring's circumference grows with its radius; it spins nothing)
+    if (ring) l(2, 2) = smoothed_hoop_rate(b0, u, k);
     const Mat3 d_strain = sym(l);
     const Mat3 d_spin = skew(l);
     const auto m = std::size_t(start_.material[k]);
@@ -234,17 +234,18 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
   ScopedTimer timer(*timers_, Phase::assembly);
   const std::size_t n = start_.size();
   // The geometric part of rows with layer or wall-strip terms (their weights are not A_e / 3
-  // and depend on edge lengths and turns): by central differences of the row's own terms
+  // and depend on edge lengths and turns), and of every axisymmetric row (its hoop row's
+  // triangle centroids): by central differences of the row's own terms
   const bool ring = !discretisation_.cells().ring.empty();
   row_derivative_.resize(n);
-  area_derivative_.resize(n);
+  hoop_derivative_.resize(n);
   const double h = 1e-6 * discretisation_.spacing();
   for (std::size_t k = 0; k < n; ++k) {
     row_derivative_[k].clear();
-    area_derivative_[k].clear();
-    if (start_cells_.area[k] > 0.0 && discretisation_.has_layer_terms(k)) {
+    hoop_derivative_[k].clear();
+    if (start_cells_.area[k] > 0.0 && (ring || discretisation_.has_layer_terms(k))) {
       discretisation_.row_derivative(position_, k, h, row_derivative_[k],
-                                     ring ? &area_derivative_[k] : nullptr);
+                                     ring ? &hoop_derivative_[k] : nullptr);
     }
   }
   const SmoothingCells& cells = discretisation_.cells();
@@ -272,25 +273,26 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
       std::int32_t self =
           ring ? find_in_row(&cells.column[std::size_t(begin)], length, std::int32_t(k)) : -1;
       if (self == length) self = -1;
-      // Material and spin: V_k B_l^T [D_k B_m^0 + sigma_bar_k B_S,m^0] (the hoop rows 1 / r_k
-      // at x_n on the right, at x on the left: header)
-      const double hoop_start = ring ? 1.0 / start_.position[k].x() : 0.0;
+      // Material and spin: V_k B_l^T [D_k B_m^0 + sigma_bar_k B_S,m^0] (the hoop rows h_km at
+      // x_n on the right, at x on the left: header)
+      const auto hoop_at = [&](const SmoothingCells& c, std::int32_t entry) {
+        return ring ? c.hoop[std::size_t(entry)] : 0.0;
+      };
       q.resize(std::size_t(length));
       for (std::int32_t j = 0; j < length; ++j) {
         const Vec2& b = b0.gradient[std::size_t(begin + j)];
         Eigen::Matrix<double, 1, 2> spin;  // B_S = 1/2 [b_y, -b_x]
         spin << 0.5 * b.y(), -0.5 * b.x();
-        q[std::size_t(j)] =
-            material_tangent_[k] * strain_operator(b, j == self ? hoop_start : 0.0) +
-            spin_stress_[k] * spin;
+        q[std::size_t(j)] = material_tangent_[k] * strain_operator(b, hoop_at(b0, begin + j)) +
+                            spin_stress_[k] * spin;
       }
       const double area = cells.area[k];
       const double volume = cell_volume(cells, k);
-      const double hoop = ring ? 1.0 / position_[k].x() : 0.0;
       for (std::int32_t i = 0; i < length; ++i) {
         const Eigen::Matrix<double, 2, 4> left =
-            volume * strain_operator(cells.gradient[std::size_t(begin + i)], i == self ? hoop : 0.0)
-                         .transpose();
+            volume *
+            strain_operator(cells.gradient[std::size_t(begin + i)], hoop_at(cells, begin + i))
+                .transpose();
         for (std::int32_t j = 0; j < length; ++j) {
           out[pair[i * length + j]].noalias() += left * q[std::size_t(j)];
         }
@@ -298,19 +300,17 @@ void IncrementOperator::assemble_tangent(const DofMap& dofs, const std::vector<d
       const Mat2 sigma = stress_[k].topLeftCorner<2, 2>();
       if (self >= 0) {
         constexpr double two_pi = 2.0 * std::numbers::pi;
-        // Ring: dV_k/dx_k = 2 pi A_k on sigma_k b_kl, column (k, x)
+        // Ring: dV_k/dx_k = 2 pi A_k on sigma_k b_kl + sigma_tt,k h_kl e_x, column (k, x)
         for (std::int32_t i = 0; i < length; ++i) {
-          out[pair[i * length + self]].col(0) +=
-              two_pi * area * (sigma * cells.gradient[std::size_t(begin + i)]);
+          Vec2 f = sigma * cells.gradient[std::size_t(begin + i)];
+          f.x() += stress_[k](2, 2) * cells.hoop[std::size_t(begin + i)];
+          out[pair[i * length + self]].col(0) += two_pi * area * f;
         }
-        // Hoop area: d(2 pi A_k sigma_tt,k)/dx_m on row (k, x), dA_k/dx_m = A_k b_km or the
-        // row's differences
-        const double hoop_force = two_pi * stress_[k](2, 2);
-        const bool differenced = !area_derivative_[k].empty();
-        for (std::int32_t j = 0; j < length; ++j) {
-          const Vec2 da = differenced ? area_derivative_[k][std::size_t(j)]
-                                      : Vec2(area * cells.gradient[std::size_t(begin + j)]);
-          out[pair[self * length + j]].row(0) += hoop_force * da.transpose();
+        // Hoop geometric: ring_k sigma_tt,k d(A_k h_kl)/dx_m on row (l, x)
+        const double hoop_force = cells.ring[k] * stress_[k](2, 2);
+        const std::vector<Vec2>& dh = hoop_derivative_[k];
+        for (std::int32_t i = 0; i < length * length; ++i) {
+          out[pair[i]].row(0) += hoop_force * dh[std::size_t(i)].transpose();
         }
       }
       for (const Stabilisation& w : stabilisation_) {

@@ -15,22 +15,22 @@
 // w_ke = SmoothingCells::triangle_weight). Like MFEM's Operator (Mult / GetGradient) it knows
 // nothing of Newton; ImplicitSolver drives it.
 //
-// Axisymmetric (x = r about x = 0, SmoothingCells::ring = 2 pi x_k filled at x), derived here
-// from the virtual work sum_k V_k sigma_k : delta eps_k with V_k(x) = 2 pi x_k A_k(x) and the
-// hoop strain delta eps_tt,k = delta u_x,k / x_k (spfem/smoothing.hpp internal_forces):
-//   F_int,l = sum_k V_k sigma_k b_kl + delta_lk 2 pi A_k sigma_tt,k e_x,
-// and the increment's hoop strain is u_x,k / x_k(x_n) (linear in u on x_n, as G_k is), in the
-// (2,2) slot of the gradient that goes to the stress update (no spin). With the 4 components
-// (rr, zz, rz, tt) of D_k and B_k^0 = [B_L^0; delta_mk e_x^T / x_k(x_n)], and the left operator
-// V_k [B_L,l; delta_lk e_x^T / x_k(x)] (V_k / x_k = 2 pi A_k), d/du_m of F_int,l is:
-//   material + spin   V_k [B_L,l; delta_lk e_x^T / x_k]^T [D_k B_m^0 + sigma_bar_k B_S,m^0]
-//   ring              2 pi A_k (sigma_k b_kl) e_x^T delta_mk      (dV_k / dx_k = 2 pi A_k)
+// Axisymmetric (x = r about x = 0, SmoothingCells::ring = 2 pi x_k and the hoop rows h_kl
+// filled at x), derived here from the virtual work sum_k V_k sigma_k : delta eps_k with
+// V_k(x) = 2 pi x_k A_k(x) and the smoothed hoop strain delta eps_tt,k = sum_l delta u_x,l h_kl
+// (spfem/smoothing.hpp fill_axisymmetric_terms, internal_forces):
+//   F_int,l = sum_k V_k (sigma_k b_kl + sigma_tt,k h_kl e_x),
+// and the increment's hoop strain is sum_l u_x,l h_kl(x_n) (linear in u on x_n, as G_k is), in
+// the (2,2) slot of the gradient that goes to the stress update (no spin). With the 4 components
+// (rr, zz, rz, tt) of D_k, B_m^0 = [B_L,m^0; h_km(x_n) e_x^T] and the left operator
+// V_k [B_L,l; h_kl(x) e_x^T], d/du_m of F_int,l is:
+//   material + spin   V_k [B_L,l; h_kl e_x^T]^T [D_k B_m^0 + sigma_bar_k B_S,m^0]
+//   ring              2 pi A_k (sigma_k b_kl + sigma_tt,k h_kl e_x) e_x^T delta_mk
+//                                                                   (dV_k / dx_k = 2 pi A_k)
 //   geometric         2 pi x_k sigma_k d(A_k b_kl)/dx_m            (the plane terms times ring_k)
-//   hoop area         delta_lk e_x 2 pi sigma_tt,k (dA_k/dx_m)^T,
-// with dA_k/dx_m = A_k b_km(x) where row k is made of its triangles' thirds (the area of a cell
-// whose boundary the nodes move through their shape functions changes by int_dOmega N_m n ds =
-// int_Omega grad N_m dA), and by central differences of the row where it has layer terms.
-
+//   hoop geometric    2 pi x_k sigma_tt,k e_x d(A_k h_kl)/dx_m^T,
+// the last two by central differences of row k's own construction (its triangles' centroids and
+// weights).
 #include <array>
 #include <memory>
 #include <vector>
@@ -102,8 +102,8 @@ class IncrementOperator {
   SparseMatrix tangent_;
   // Rows with boundary-layer or wall-strip terms: d(A_k b_kl)/dx_m by central differences
   std::vector<std::vector<Vec2>> row_derivative_;
-  // and, axisymmetric, dA_k/dx_m of those rows (the hoop force's area)
-  std::vector<std::vector<Vec2>> area_derivative_;
+  // and, axisymmetric (every row), d(A_k h_kl)/dx_m (the hoop force's geometric part)
+  std::vector<std::vector<Vec2>> hoop_derivative_;
   Timers own_timers_;         // where the phases go when the caller passes no Timers
   Timers* timers_ = nullptr;  // mesh (refill), constitutive, assembly
   // The stabilisation energies W of spfem/stiffness_stabilisation.hpp, their forces added to

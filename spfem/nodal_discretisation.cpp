@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -109,9 +108,9 @@ void NodalDiscretisation::refill(const std::vector<Vec2>& x) {
 void NodalDiscretisation::fill_ring(const std::vector<Vec2>& x) {
   if (!axisymmetric_) {
     cells_.ring.clear();
+    cells_.hoop.clear();
     return;
   }
-  cells_.ring.resize(x.size());
   for (std::size_t k = 0; k < x.size(); ++k) {
     // A node's ring 2 pi r; one on or across the axis has none (the symmetry wall on x = 0 holds
     // the nodes dp / 2 off it)
@@ -121,8 +120,8 @@ void NodalDiscretisation::fill_ring(const std::vector<Vec2>& x) {
                              " m): an axisymmetric scene needs a "
                              "symmetry wall along x = 0 that holds its nodes off it");
     }
-    cells_.ring[k] = 2.0 * std::numbers::pi * x[k].x();
   }
+  fill_axisymmetric_terms(mesh_, x, cells_);
 }
 
 }  // namespace duet::spfem

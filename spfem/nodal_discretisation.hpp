@@ -37,8 +37,8 @@ class NodalDiscretisation {
  public:
   /// `options`: the scene's [spfem] (alpha_factor, remesh, remesh_angle(_fraction),
   /// boundary_layer); `spacing` dp (m); walls then rigid bodies.
-  /// `axisymmetric`: x = r about the axis x = 0; the cells carry their rings 2 pi r_k
-  /// (SmoothingCells::ring).
+  /// `axisymmetric`: x = r about the axis x = 0; the cells carry their rings 2 pi r_k and hoop
+  /// rows (SmoothingCells::ring, hoop).
   NodalDiscretisation(const duet::SpfemOptions& options, double spacing,
                       std::vector<NodeBoundary> boundaries, bool axisymmetric = false);
 
@@ -67,11 +67,11 @@ class NodalDiscretisation {
   }
 
   /// d(A_k b_kl)/dx_m over row k at `x` (the positions of the last refill), by central
-  /// differences of step h (smoothing.hpp row_position_derivative); with `area_out` also
-  /// dA_k/dx_m.
+  /// differences of step h (smoothing.hpp row_position_derivative); with `hoop_out` also
+  /// d(A_k h_kl)/dx_m (axisymmetric).
   void row_derivative(std::vector<Vec2>& x, std::size_t k, double h, std::vector<Vec2>& out,
-                      std::vector<Vec2>* area_out = nullptr) {
-    row_position_derivative(mesh_, x, k, layer_depth(), &wall_strips_, h, cells_, out, area_out);
+                      std::vector<Vec2>* hoop_out = nullptr) {
+    row_position_derivative(mesh_, x, k, layer_depth(), &wall_strips_, h, cells_, out, hoop_out);
   }
 
   const duet::SpfemOptions& options() const { return options_; }
@@ -100,7 +100,8 @@ class NodalDiscretisation {
   }
 
  private:
-  /// Axisymmetric: cells_.ring = 2 pi x_k at `x` (throws NumericalFailure for a node at x <= 0).
+  /// Axisymmetric: cells_.ring = 2 pi x_k and the hoop rows at `x` (smoothing.hpp
+  /// fill_axisymmetric_terms; throws NumericalFailure for a node at x <= 0).
   void fill_ring(const std::vector<Vec2>& x);
 
   duet::SpfemOptions options_;

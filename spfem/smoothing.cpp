@@ -227,7 +227,43 @@ void fill_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& p
   }
 }
 
+// Row k of the axisymmetric hoop strain (smoothing.hpp fill_axisymmetric_terms) from the row's
+// triangle weights at `points`; a row's first entry is the node itself (collect_row).
+void fill_hoop_row(const std::vector<Triangle>& triangles, const std::vector<Vec2>& points,
+                   std::size_t k, SmoothingCells& cells) {
+  const Index begin = cells.offset[k];
+  const Index end = cells.offset[k + 1];
+  for (Index entry = begin; entry < end; ++entry) cells.hoop[entry] = 0.0;
+  const double area = cells.area[k];
+  if (begin == end || area == 0.0) return;
+  assert(cells.column[begin] == Index(k));
+  double carried = 0.0;  // sum_e w_ke
+  for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
+    const Triangle& t = triangles[cells.node_triangles.triangle[i]];
+    const double w = cells.triangle_weight[i];
+    // Each corner's shape function has the mean 1/3 at the centroid, where u_r / r is taken
+    const double r_c = (points[t[0]].x() + points[t[1]].x() + points[t[2]].x()) / 3.0;
+    for (const Index entry : cells.corner_entry[i]) cells.hoop[entry] += w / (3.0 * r_c);
+    carried += w;
+  }
+  cells.hoop[begin] += (area - carried) / points[k].x();  // the wall strips' area
+  for (Index entry = begin; entry < end; ++entry) cells.hoop[entry] /= area;
+}
+
 }  // namespace
+
+void fill_axisymmetric_terms(const AlphaMesh& mesh, const std::vector<Vec2>& points,
+                             SmoothingCells& cells) {
+  const std::size_t n_nodes = points.size();
+  const std::ptrdiff_t n = std::ptrdiff_t(n_nodes);
+  cells.ring.resize(n_nodes);
+  cells.hoop.resize(cells.gradient.size());
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    cells.ring[std::size_t(k)] = 2.0 * std::numbers::pi * points[std::size_t(k)].x();
+    fill_hoop_row(mesh.triangles, points, std::size_t(k), cells);
+  }
+}
 
 void build_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,
                            SmoothingCells& cells, double layer_depth, const WallStrips* walls) {
@@ -313,6 +349,7 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
                      std::vector<Vec2>& force) {
   const std::ptrdiff_t n = std::ptrdiff_t(cells.offset.size()) - 1;
   force.resize(std::size_t(n));
+  const bool hoop = !cells.hoop.empty();
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (std::ptrdiff_t l = 0; l < n; ++l) {
     Vec2 f = Vec2::Zero();
@@ -322,16 +359,19 @@ void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stres
       const Vec2& b_kl = cells.gradient[cells.transpose[entry]];
       // Zhang 2018 slides, "Strain smoothing technique": F_int = sum_k B_L^(k)T sigma_k A^(k)
       f.noalias() += cell_volume(cells, std::size_t(k)) * (stress[k].topLeftCorner<2, 2>() * b_kl);
+      // Axisymmetric: the hoop stress's share, V_k sigma_tt,k h_kl
+      if (hoop) {
+        f.x() += cell_volume(cells, std::size_t(k)) * stress[k](2, 2) *
+                 cells.hoop[cells.transpose[entry]];
+      }
     }
-    // Axisymmetric: the hoop stress's share, V_l sigma_tt,l / r_l
-    if (!cells.ring.empty()) f.x() += 2.0 * std::numbers::pi * cells.area[l] * stress[l](2, 2);
     force[l] = f;
   }
 }
 
 void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, std::size_t k,
                              double layer_depth, WallStrips* walls, double h, SmoothingCells& cells,
-                             std::vector<Vec2>& out, std::vector<Vec2>* area_out) {
+                             std::vector<Vec2>& out, std::vector<Vec2>* hoop_out) {
   const std::vector<Triangle>& triangles = mesh.triangles;
   const bool on_surface = mesh.surface.size() != points.size() || mesh.surface[k] != 0;
   const WallStrips* strips =
@@ -339,7 +379,7 @@ void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, s
   const Index begin = cells.offset[k];
   const Index length = cells.offset[k + 1] - begin;
   out.assign(std::size_t(length * length * 2), Vec2::Zero());
-  if (area_out != nullptr) area_out->assign(std::size_t(length), Vec2::Zero());
+  if (hoop_out != nullptr) hoop_out->assign(std::size_t(length * length), Vec2::Zero());
   const auto retriangulate = [&] {
     for (Index i = cells.node_triangles.offset[k]; i < cells.node_triangles.offset[k + 1]; ++i) {
       const Index e = cells.node_triangles.triangle[i];
@@ -357,32 +397,39 @@ void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, s
       if (e.b == m) e.b_wall += d;
     }
   };
+  // The row's terms at the current points: fill_row, then the hoop row where asked
+  const auto refill_row = [&] {
+    retriangulate();
+    fill_row(triangles, points, k, layer_depth, on_surface, strips, cells);
+    if (hoop_out != nullptr) fill_hoop_row(triangles, points, k, cells);
+  };
   std::vector<Vec2> forward(static_cast<std::size_t>(length));
+  std::vector<double> forward_hoop(hoop_out != nullptr ? std::size_t(length) : 0);
   for (Index jm = 0; jm < length; ++jm) {
     const Index m = cells.column[begin + jm];
     for (int c = 0; c < 2; ++c) {
       Vec2 d = Vec2::Zero();
       d[c] = h;
       move(m, d);
-      retriangulate();
-      fill_row(triangles, points, k, layer_depth, on_surface, strips, cells);
+      refill_row();
       for (Index jl = 0; jl < length; ++jl)
         forward[jl] = cells.area[k] * cells.gradient[begin + jl];
-      const double forward_area = cells.area[k];
+      for (std::size_t jl = 0; jl < forward_hoop.size(); ++jl)
+        forward_hoop[jl] = cells.area[k] * cells.hoop[std::size_t(begin) + jl];
       move(m, -2.0 * d);
-      retriangulate();
-      fill_row(triangles, points, k, layer_depth, on_surface, strips, cells);
+      refill_row();
       for (Index jl = 0; jl < length; ++jl) {
         out[std::size_t((jl * length + jm) * 2 + c)] =
             (forward[jl] - cells.area[k] * cells.gradient[begin + jl]) / (2.0 * h);
       }
-      if (area_out != nullptr)
-        (*area_out)[std::size_t(jm)][c] = (forward_area - cells.area[k]) / (2.0 * h);
+      for (std::size_t jl = 0; jl < forward_hoop.size(); ++jl) {
+        (*hoop_out)[jl * std::size_t(length) + std::size_t(jm)][c] =
+            (forward_hoop[jl] - cells.area[k] * cells.hoop[std::size_t(begin) + jl]) / (2.0 * h);
+      }
       move(m, d);
     }
   }
-  retriangulate();
-  fill_row(triangles, points, k, layer_depth, on_surface, strips, cells);
+  refill_row();
 }
 
 void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& points,

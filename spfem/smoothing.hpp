@@ -31,6 +31,9 @@ struct SmoothingCells {
   // V_k = 2 pi r_k A_k (NodalDiscretisation fills it); empty in plane strain (V_k = A_k, per
   // metre).
   std::vector<double> ring;
+  // Axisymmetric scenes: the smoothed hoop strain's row, h_kl (1/m) per entry, so that node k's
+  // hoop strain is eps_tt,k = sum_l u_r,l h_kl (fill_axisymmetric_terms); empty in plane strain.
+  std::vector<double> hoop;
   std::vector<std::int32_t> offset;     // n_nodes + 1 row starts
   std::vector<std::int32_t> column;     // node l of each entry
   std::vector<Vec2> gradient;           // b_kl (1/m)
@@ -107,11 +110,37 @@ void refill_smoothing_cells(const AlphaMesh& mesh, const std::vector<Vec2>& poin
 /// no-slip strip's stay). `cells` must have been filled from `mesh` at `points`; `points` and the
 /// strips' wall points are perturbed and restored, and row k is refilled at the end (bitwise as
 /// before). Serial: it writes the triangle terms shared with the neighbouring rows. With
-/// `area_out`, also (*area_out)[m] = dA_k / dx_m by the same differences (an axisymmetric row's
-/// hoop force 2 pi A_k sigma_tt).
+/// `hoop_out` (an axisymmetric row, cells.hoop set), also (*hoop_out)[l * len + m] =
+/// d(A_k h_kl) / dx_m by the same differences (the hoop force's geometric part).
 void row_position_derivative(const AlphaMesh& mesh, std::vector<Vec2>& points, std::size_t k,
                              double layer_depth, WallStrips* walls, double h, SmoothingCells& cells,
-                             std::vector<Vec2>& out, std::vector<Vec2>* area_out = nullptr);
+                             std::vector<Vec2>& out, std::vector<Vec2>* hoop_out = nullptr);
+
+/// Axisymmetric scenes: ring_k = 2 pi r_k and the smoothed hoop strain's rows at `points` (the
+/// cells filled from `mesh` there). The hoop strain is the cell's mean of each triangle's u_r / r
+/// at its centroid c_e (one-point quadrature of the ring volume, Pappus), weighted as the triangle
+/// enters the in-plane row:
+///   A_k h_kl = sum_{e at k, l in e} w_ke / (3 r_c,e) + delta_kl (A_k - sum_e w_ke) / r_k,
+/// w_ke = triangle_weight (A_e / 3 plus the layer strips e carries); the wall strips' area takes
+/// the node's own u_r,k / r_k. It is exact for u_r = a r (patch test), and with V_k = 2 pi r_k A_k
+/// the internal force of a uniform stress vanishes at every interior node exactly:
+/// sum_k r_k (A_e / 3) over e's corners is A_e r_c,e = int_e r dA, so sum_k V_k (sigma_rr b_kl,r
+/// + sigma_tt h_kl) sums int_e (r dN_l/dr + N_l) dA = int d(r N_l)/dr dA = 0 over l's triangles.
+/// A cell's volumetric strain is then the mean of one linear field's, as in plane strain (a nodal
+/// u_r,k / r_k beside the smoothed in-plane strain mixes a cell mean with a point value and locks
+/// near nu = 1/2: tests/spfem/axisymmetric_benchmark_test.cpp at nu 0.497).
+void fill_axisymmetric_terms(const AlphaMesh& mesh, const std::vector<Vec2>& points,
+                             SmoothingCells& cells);
+
+/// eps_tt,k rate (or increment) = sum_l v_r,l h_kl of an axisymmetric row (cells.hoop set).
+inline double smoothed_hoop_rate(const SmoothingCells& cells, const std::vector<Vec2>& velocity,
+                                 std::size_t k) {
+  double rate = 0.0;
+  for (std::int32_t e = cells.offset[k]; e < cells.offset[k + 1]; ++e) {
+    rate += cells.hoop[std::size_t(e)] * velocity[std::size_t(cells.column[std::size_t(e)])].x();
+  }
+  return rate;
+}
 
 /// L_k(i, j) = dv_i/dx_j = sum_l v_l,i b_kl,j (+ sum_w v_w,i c_kw,j: wall strips) at every node
 /// (zero for a node in no triangle).
@@ -119,11 +148,10 @@ void smoothed_velocity_gradients(const SmoothingCells& cells, const std::vector<
                                  std::vector<Mat2>& gradient);
 
 /// F_int,l = sum_k V_k sigma_k b_kl (in-plane part of sigma), gathered per node l without races;
-/// the equation of motion is m a = F_ext - F_int. Axisymmetric (cells.ring set), the virtual work
-/// sum_k V_k sigma_k : delta eps_k with the hoop strain delta eps_tt,k = delta u_r,k / r_k adds
-/// the hoop force V_k sigma_tt,k / r_k = 2 pi A_k sigma_tt,k to node k's radial (x) component; a
-/// uniform hydrostatic stress is then in equilibrium at every interior node exactly, as
-/// sum_k r_k A_k b_kl = int r grad N_l dA = -A_l e_r there (tests/spfem/axisymmetric_test.cpp).
+/// the equation of motion is m a = F_ext - F_int. Axisymmetric (cells.ring and cells.hoop set),
+/// the virtual work sum_k V_k sigma_k : delta eps_k with the smoothed hoop strain
+/// delta eps_tt,k = sum_l delta u_r,l h_kl adds the hoop force sum_k V_k sigma_tt,k h_kl to node
+/// l's radial (x) component (fill_axisymmetric_terms; tests/spfem/axisymmetric_test.cpp).
 void internal_forces(const SmoothingCells& cells, const std::vector<Mat3>& stress,
                      std::vector<Vec2>& force);
 

@@ -1,7 +1,8 @@
-// The axisymmetric smoothed operator (spfem/smoothing.hpp, SmoothingCells::ring): the cell
-// volumes V_k = 2 pi r_k A_k and the hoop force 2 pi A_k sigma_tt,k. Checked on Delaunay meshes
+// The axisymmetric smoothed operator (spfem/smoothing.hpp, SmoothingCells::ring and hoop): the
+// cell volumes V_k = 2 pi r_k A_k and the smoothed hoop strain. Checked on Delaunay meshes
 // of cell-centred lattices in the r-z plane (built here, not by build_alpha_mesh) against
-// equilibrium: a hydrostatic stress balances at every interior node exactly, and the nodal
+// a uniform radial stretch (exact hoop strain), equilibrium: a hydrostatic stress balances at
+// every interior node exactly, and the nodal
 // stresses of Lame's thick cylinder (an exact elastic equilibrium of sigma_rr, sigma_tt) leave a
 // residual that vanishes as the spacing does.
 #include <gtest/gtest.h>
@@ -37,8 +38,7 @@ struct RzPatch {
     }
     mesh = delaunay_mesh(x);
     build_smoothing_cells(mesh, x, cells);
-    cells.ring.resize(x.size());
-    for (std::size_t k = 0; k < x.size(); ++k) cells.ring[k] = 2.0 * kPi * x[k].x();
+    fill_axisymmetric_terms(mesh, x, cells);
   }
   /// Nodes at least two spacings inside every side: their rows see only interior cells.
   bool interior(std::size_t k, double width, double height) const {
@@ -75,6 +75,30 @@ TEST(AxisymmetricCells, AHydrostaticStressIsInEquilibriumAtEveryInteriorNode) {
     ++checked;
   }
   EXPECT_GT(checked, 100);
+}
+
+TEST(AxisymmetricCells, TheSmoothedHoopStrainIsExactForAUniformRadialStretch) {
+  // Arrange: r in [0.1, 1.1] m (the first column dp / 2 off r = 0.05 m's), z in [0, 0.4] m, dp
+  // 0.05 m, with the boundary layer; u_r = a r (eps_tt = a everywhere) and u_r = c (eps_tt = c / r)
+  const double dp = 0.05;
+  RzPatch patch(dp, 0.1, 1.0, 0.4);
+  build_smoothing_cells(patch.mesh, patch.x, patch.cells, 0.5 * dp);
+  fill_axisymmetric_terms(patch.mesh, patch.x, patch.cells);
+  const double a = 1e-3;
+  const double c = 2e-4;
+  std::vector<Vec2> stretch(patch.x.size());
+  std::vector<Vec2> shift(patch.x.size(), Vec2(c, 0.0));
+  for (std::size_t k = 0; k < patch.x.size(); ++k) stretch[k] = Vec2(a * patch.x[k].x(), 0.0);
+  // Act and assert: a to round-off at every node, surface ones included (every term of the row
+  // is a triangle's centroid value, which a linear field carries exactly); for the shift the mean
+  // of c / r over the cell: within c dp^2 / r^3 of c / r_k inside (a centred mean), within
+  // c dp / r^2 at the surface (the layer strips lean on the triangles inside: first order there)
+  for (std::size_t k = 0; k < patch.x.size(); ++k) {
+    const double r = patch.x[k].x();
+    EXPECT_NEAR(smoothed_hoop_rate(patch.cells, stretch, k), a, 1e-13) << "node " << k;
+    const double bound = patch.interior(k, 1.0, 0.4) ? c * dp * dp / (r * r * r) : c * dp / (r * r);
+    EXPECT_NEAR(smoothed_hoop_rate(patch.cells, shift, k), c / r, bound) << "node " << k;
+  }
 }
 
 /// Lame's thick cylinder in plane strain along z: sigma_rr = A - B / r^2, sigma_tt = A + B / r^2,
