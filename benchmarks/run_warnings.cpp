@@ -257,11 +257,9 @@ LoadDrop largest_load_drop(const std::vector<double>& time, const std::vector<do
 }
 
 bool cannot_soften(const Scene& scene) {
-  if (scene.strength_reduction.factor != 1.0) return false;
-  for (const Material& m : scene.materials) {
-    if (constitutive::builtin_models().find(m.model).softens) return false;
-  }
-  return true;
+  std::vector<std::string> models;
+  for (const Material& m : scene.materials) models.push_back(m.model);
+  return scene.strength_reduction.factor == 1.0 && constitutive::none_softens(models);
 }
 
 std::vector<std::string> run_warnings(const Scene& scene, bool inertial,

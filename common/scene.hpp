@@ -323,6 +323,12 @@ struct SpfemImplicitOptions {
   // refused and cut (snap = "refuse")
   double min_area_ratio = 0.5;
   bool refuse_snaps = false;
+  // A converged quasi-static increment that leaves a driven wall's or rigid body's load more than
+  // this fraction below its peak, in a scene whose materials cannot soften and whose strength is
+  // not reduced, is refused and cut (a snap of nodal integration's soft modes, not the soil's
+  // response); accepted and counted when the cuts run out, the peak then starting again from it;
+  // 0 = accept every converged increment
+  double load_drop = 0.05;
   // The stiffness stabilisation's energy anchored to each increment's start, with 2 G as its
   // modulus (spfem/increment_operator.hpp); 0 = off
   double increment_stabilisation = 0.0;

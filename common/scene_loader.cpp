@@ -493,6 +493,8 @@ SpfemImplicitOptions read_implicit(SectionReader& r) {
                               in_closed(0.0, 0.99, "a fraction of a triangle's area (-)"));
   o.increment_stabilisation = r.number("increment_stabilisation", o.increment_stabilisation,
                                        non_negative("an increment stabilisation coefficient (-)"));
+  o.load_drop = r.number("load_drop", o.load_drop,
+                         in_closed(0.0, 0.99, "a fraction of a driven boundary's peak load (-)"));
   o.refuse_snaps =
       r.choice("snap", {"warn", "refuse"}, o.refuse_snaps ? "refuse" : "warn") == "refuse";
   o.extrapolate = r.choice("predictor", {"extrapolated", "none"},

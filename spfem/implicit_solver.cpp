@@ -106,6 +106,7 @@ void ImplicitSolver::initialise(Particles& particles) {
   increment_ = 0.0;
   external_force_.assign(n, Vec2::Zero());
   boundary_force_.assign(setup_.boundaries.size(), Vec2::Zero());
+  load_peak_.assign(setup_.boundaries.size(), 0.0);
   counters_ = NewtonCounters{};
   timers_.reset();
 }
@@ -209,8 +210,8 @@ std::string ImplicitSolver::SqueezedTriangle::describe(double floor) const {
   return why.str();
 }
 
-ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, double t0,
-                                                        double t1) {
+ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, double t0, double t1,
+                                                        bool may_cut) {
   const duet::SpfemImplicitOptions& o = setup_.implicit;
   const std::size_t n = particles.size();
   Attempt attempt;
@@ -272,8 +273,52 @@ ImplicitSolver::Attempt ImplicitSolver::solve_increment(Particles& particles, do
     attempt.why = std::move(why);
     return attempt;
   }
-  commit(particles, op, integrator, attempt.displacement, constraints);
+  std::vector<Vec2> force = reactions(op, integrator, attempt.displacement, constraints);
+  if (std::string why = load_drop(force, t1, may_cut); !why.empty()) {
+    ++counters_.load_drop_cuts;
+    attempt.converged = false;
+    attempt.why = std::move(why);
+    return attempt;
+  }
+  commit(particles, op, integrator, attempt.displacement, constraints, std::move(force), t1);
   return attempt;
+}
+
+double ImplicitSolver::driven_load(std::size_t boundary, const Vec2& force, double t) const {
+  const NodeBoundary& b = setup_.boundaries[boundary];
+  if (b.radial) {
+    return schedule_value(b.radial_velocity, t).x() != 0.0 ? force.norm() : std::nan("");
+  }
+  const Vec2 v = schedule_value(b.velocity, t);
+  return v != Vec2::Zero() ? -force.dot(v.normalized()) : std::nan("");
+}
+
+std::string ImplicitSolver::load_drop(const std::vector<Vec2>& force, double t1, bool may_cut) {
+  const duet::SpfemImplicitOptions& o = setup_.implicit;
+  // A perfectly plastic or elastic soil's load on a boundary driven into it does not fall; a
+  // quasi-static increment that lets it fall has followed a soft mode of nodal integration
+  // through a snap (benchmarks/run_warnings.hpp warns of the same in the output). Dynamics and
+  // gravity loading are left alone.
+  if (!(o.load_drop > 0.0) || !setup_.monotonic || o.newmark || settling_) return "";
+  std::vector<std::size_t> dropped;
+  for (std::size_t b = 0; b < force.size(); ++b) {
+    const double load = driven_load(b, force[b], t1);
+    if (std::isnan(load) || !(load_peak_[b] > 0.0)) continue;
+    if (load < (1.0 - o.load_drop) * load_peak_[b]) dropped.push_back(b);
+  }
+  if (dropped.empty()) return "";
+  if (!may_cut) {  // kept: the path goes on from the lower load
+    for (const std::size_t b : dropped) load_peak_[b] = driven_load(b, force[b], t1);
+    counters_.load_drops_accepted += long(dropped.size());
+    return "";
+  }
+  const std::size_t b = dropped.front();
+  std::ostringstream why;
+  why << "the load on " << setup_.boundaries[b].name << " fell to " << driven_load(b, force[b], t1)
+      << " from its peak " << load_peak_[b]
+      << ", more than spfem.implicit.load_drop = " << o.load_drop
+      << " below it, though no material can soften";
+  return why.str();
 }
 
 std::vector<NodeConstraint> ImplicitSolver::start_contacts(const Particles& particles, double t0,
@@ -459,28 +504,40 @@ std::string ImplicitSolver::refusal(const Particles& particles, const std::vecto
   return "";
 }
 
+std::vector<Vec2> ImplicitSolver::reactions(const IncrementOperator& op,
+                                            const NewmarkIncrement& integrator,
+                                            const std::vector<Vec2>& u,
+                                            const std::vector<NodeConstraint>& constraints) const {
+  const std::size_t n = u.size();
+  std::vector<Vec2> force(boundary_force_.size(), Vec2::Zero());
+  const std::vector<Vec2>& f_int = op.internal_force();
+  std::vector<std::int32_t> owner(n, -1);
+  for (const NodeConstraint& c : constraints) {
+    const auto i = std::size_t(c.node);
+    if (owner[i] < 0 || c.kind == ConstraintKind::fixed) owner[i] = c.boundary;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] >= 0) {
+      force[std::size_t(owner[i])] +=
+          external_force_[i] - f_int[i] - integrator.inertia_force(i, u[i]);
+    }
+  }
+  add_wall_strip_reactions(discretisation_.wall_strips(), discretisation_.cells(), op.stress(),
+                           force);
+  return force;
+}
+
 void ImplicitSolver::commit(Particles& particles, const IncrementOperator& op,
                             const NewmarkIncrement& integrator, const std::vector<Vec2>& u,
-                            const std::vector<NodeConstraint>& constraints) {
+                            const std::vector<NodeConstraint>& constraints, std::vector<Vec2> force,
+                            double t1) {
   const std::size_t n = particles.size();
   const double dt = integrator.dt;
-  std::fill(boundary_force_.begin(), boundary_force_.end(), Vec2::Zero());
-  {
-    // Reactions: the residual at the constrained parts, to the boundary that holds each node
-    const std::vector<Vec2>& f_int = op.internal_force();
-    std::vector<std::int32_t> owner(n, -1);
-    for (const NodeConstraint& c : constraints) {
-      const auto i = std::size_t(c.node);
-      if (owner[i] < 0 || c.kind == ConstraintKind::fixed) owner[i] = c.boundary;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (owner[i] >= 0) {
-        boundary_force_[std::size_t(owner[i])] +=
-            external_force_[i] - f_int[i] - integrator.inertia_force(i, u[i]);
-      }
-    }
-    add_wall_strip_reactions(discretisation_.wall_strips(), discretisation_.cells(), op.stress(),
-                             boundary_force_);
+  boundary_force_ = std::move(force);
+  for (std::size_t b = 0; b < boundary_force_.size(); ++b) {
+    const double load = driven_load(b, boundary_force_[b], t1);
+    // Not driven now: the next drive starts a new peak (a reversed drive unloads)
+    load_peak_[b] = std::isnan(load) ? 0.0 : std::max(load_peak_[b], load);
   }
   const std::size_t width = particles.internal.width;
   for (std::size_t i = 0; i < n; ++i) {
@@ -524,7 +581,7 @@ double ImplicitSolver::step(Particles& particles, double time, double end_time) 
   if (left - dt < 1e-6 * nominal) dt = left;  // no sliver of an increment at the end
   int cuts = 0;
   while (true) {
-    const Attempt attempt = solve_increment(particles, time, time + dt);
+    const Attempt attempt = solve_increment(particles, time, time + dt, may_halve(o, dt, nominal));
     if (attempt.converged) {
       ++counters_.increments;
       const int iterations = static_cast<int>(attempt.residuals.size()) - 1;
@@ -613,6 +670,9 @@ Json ImplicitSolver::diagnostics() const {
   newton["snaps"] = c.snaps;
   newton["snap_first_time"] = c.snaps > 0 ? Json(c.snap_first_time) : Json();
   newton["snap_worst_area_ratio"] = c.snaps > 0 ? Json(c.snap_worst_ratio) : Json();
+  newton["load_drop"] = setup_.implicit.load_drop;
+  newton["load_drop_cuts"] = c.load_drop_cuts;
+  newton["load_drops_accepted"] = c.load_drops_accepted;
   newton["tolerance"] = setup_.implicit.tolerance;
   newton["displacement_tolerance"] = setup_.implicit.displacement_tolerance;
   newton["residual_scale"] =
@@ -652,12 +712,13 @@ void ImplicitSolver::save_state(StateBag& state) const {
                           previous_increment_, increment_});
   const NewtonCounters& c = counters_;
   put(state, "solver.counters",
-      std::vector<double>{double(c.increments), double(c.cuts), double(c.iterations),
-                          double(c.iterations_max), double(c.active_set_passes), double(c.releases),
-                          double(c.attachments), double(c.factorisations),
-                          double(c.line_search_halvings), c.increment_min, c.increment_max,
-                          double(c.constrained_nodes_max), double(c.snaps), c.snap_first_time,
-                          c.snap_worst_ratio});
+      std::vector<double>{
+          double(c.increments), double(c.cuts), double(c.iterations), double(c.iterations_max),
+          double(c.active_set_passes), double(c.releases), double(c.attachments),
+          double(c.factorisations), double(c.line_search_halvings), c.increment_min,
+          c.increment_max, double(c.constrained_nodes_max), double(c.snaps), c.snap_first_time,
+          c.snap_worst_ratio, double(c.load_drop_cuts), double(c.load_drops_accepted)});
+  put(state, "solver.load_peak", load_peak_);
   put_lists(state, "solver.residual_history", c.residual_history);
   discretisation_.save_state(state, "solver.mesh_counters");
 }
@@ -675,7 +736,8 @@ void ImplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
   sized("solver.acceleration", 2 * nodes);
   sized("solver.boundary_force", 2 * boundary_force_.size());
   sized("solver.scalars", 4);
-  sized("solver.counters", 15);
+  sized("solver.counters", 17);
+  sized("solver.load_peak", load_peak_.size());
   get_integers(state, "solver.released", released_);
   get_bits(state, "solver.rigid_contact", held_by_);
   get(state, "solver.previous_u", previous_u_);
@@ -703,6 +765,9 @@ void ImplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
   c.snaps = static_cast<long>(k[12]);
   c.snap_first_time = k[13];
   c.snap_worst_ratio = k[14];
+  c.load_drop_cuts = static_cast<long>(k[15]);
+  c.load_drops_accepted = static_cast<long>(k[16]);
+  get(state, "solver.load_peak", load_peak_);
   get_lists(state, "solver.residual_history", c.residual_history);
   discretisation_.restore_state(state, "solver.mesh_counters", nodes);
 }

@@ -42,6 +42,9 @@ struct IspfemSetup {
   std::vector<std::unique_ptr<constitutive::Model>> models;  // by material index
   std::vector<NodeBoundary> boundaries;                      // walls, then rigid bodies
   bool axisymmetric = false;  // x = r about the axis x = 0 (Scene::formulation)
+  // No material can soften and no strength reduction runs: a driven load does not fall
+  // (spfem.implicit.load_drop)
+  bool monotonic = false;
 };
 
 struct NewtonCounters {
@@ -60,6 +63,8 @@ struct NewtonCounters {
   long snaps = 0;                 // increments that squeezed a triangle below min_area_ratio
   double snap_first_time = 0.0;   // s, the first one's end
   double snap_worst_ratio = 1.0;  // the smallest area ratio among them (< 0: inside out)
+  long load_drop_cuts = 0;        // converged increments refused for a load drop, then cut
+  long load_drops_accepted = 0;   // drops kept when the cuts ran out
   // The relative residual after each iteration, one list per converged increment.
   std::vector<std::vector<double>> residual_history;
 };
@@ -114,7 +119,8 @@ class ImplicitSolver {
   };
   /// One increment [t0, t1]: mesh, contacts, Newton, the active set's passes, the acceptance
   /// checks, and the commit of a converged and accepted one.
-  Attempt solve_increment(Particles& particles, double t0, double t1);
+  /// `may_cut`: the increment may still be halved (a load drop refuses it only then).
+  Attempt solve_increment(Particles& particles, double t0, double t1, bool may_cut = false);
   /// The contacts at the increment's start (and the nodes still let go of).
   std::vector<NodeConstraint> start_contacts(const Particles& particles, double t0, double t1);
   /// F_ext at t1 into external_force_; returns its norm.
@@ -139,9 +145,22 @@ class ImplicitSolver {
   /// Why a converged increment is not accepted (a node through a wall, a refused snap), or "";
   /// counts the snaps it lets through.
   std::string refusal(const Particles& particles, const std::vector<Vec2>& u, double t0, double t1);
+  /// Per boundary, the force the soil puts on it at the converged increment: the residual at the
+  /// constrained parts, to the boundary that holds each node, plus the wall strips'.
+  std::vector<Vec2> reactions(const IncrementOperator& op, const NewmarkIncrement& integrator,
+                              const std::vector<Vec2>& u,
+                              const std::vector<NodeConstraint>& constraints) const;
+  /// Why a converged quasi-static increment with these reactions at t1 is refused for a load
+  /// drop (spfem.implicit.load_drop; "" when it is not, or `may_cut` is false: then a drop is
+  /// kept, counted, and its load becomes the boundary's peak).
+  std::string load_drop(const std::vector<Vec2>& force, double t1, bool may_cut);
+  /// A driven boundary's load at t: -F . v / |v| for a translating one, |F| for a radial wall;
+  /// NaN when it does not move at t.
+  double driven_load(std::size_t boundary, const Vec2& force, double t) const;
   /// The converged state into the particles; reactions, contacts held and Newmark's vectors.
   void commit(Particles& particles, const IncrementOperator& op, const NewmarkIncrement& integrator,
-              const std::vector<Vec2>& u, const std::vector<NodeConstraint>& constraints);
+              const std::vector<Vec2>& u, const std::vector<NodeConstraint>& constraints,
+              std::vector<Vec2> force, double t1);
   std::vector<NodeConstraint> find_constraints(const std::vector<Vec2>& x, double t0, double t1,
                                                bool crossed_only) const;
   /// The first node whose path x -> x + u crosses a wall (in the frame of a translating wall),
@@ -175,6 +194,8 @@ class ImplicitSolver {
   double increment_ = 0.0;  // the current (adaptive) increment size
   std::vector<Vec2> external_force_;
   std::vector<Vec2> boundary_force_;
+  std::vector<double>
+      load_peak_;  // per boundary: its driven load's peak (spfem.implicit.load_drop)
   Timers timers_;
   NewtonCounters counters_;
 };

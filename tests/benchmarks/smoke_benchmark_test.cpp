@@ -16,6 +16,7 @@
 #include "benchmarks/driver.hpp"
 #include "benchmarks/methods.hpp"
 #include "benchmarks/scene_input.hpp"
+#include "common/scene_loader.hpp"
 
 namespace duet {
 namespace {
@@ -44,12 +45,30 @@ std::ostream& operator<<(std::ostream& out, const SmokeCase& c) {
 
 class SmokeBenchmark : public testing::TestWithParam<SmokeCase> {};
 
+// Under the sanitizers (`./duet test --sanitize`, whose build runs a case 5 to 16 times slower)
+// each case runs the first quarter of its scene's time and must end cleanly: completed, or failed
+// as recorded if the failure comes that early. The sanitizers look for memory and undefined-
+// behaviour faults on the paths a run takes from its start (lattice, mesh, contacts, output,
+// measures); the release suite asserts every case's outcome over the whole run.
+#ifdef DUET_SANITIZED_SMOKE
+constexpr double kTimeFraction = 0.25;
+#else
+constexpr double kTimeFraction = 1.0;
+#endif
+
 TEST_P(SmokeBenchmark, CompletesWithinToleranceOrDoesWhatIsRecorded) {
   const SmokeCase& c = GetParam();
   const std::string path = std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/" + c.scene + ".toml";
   char spacing[40];
   std::snprintf(spacing, sizeof spacing, "spacing=%.17g", c.spacing);
-  const Scene scene = load_scene_checked(path, {spacing});
+  std::vector<std::string> overrides = {spacing};
+  if (kTimeFraction < 1.0) {
+    char end_time[60];
+    std::snprintf(end_time, sizeof end_time, "time.end_time=%.17g",
+                  kTimeFraction * load_scene(path, {spacing}).time.end_time);
+    overrides.push_back(end_time);
+  }
+  const Scene scene = load_scene_checked(path, overrides);
   RunOptions options;
   options.out_dir =
       (std::filesystem::temp_directory_path() / ("duet-smoke-" + c.scene + "-" + c.method))
@@ -57,6 +76,13 @@ TEST_P(SmokeBenchmark, CompletesWithinToleranceOrDoesWhatIsRecorded) {
   options.show_progress = false;
   const RunSummary run = run_scene(scene, builtin_methods().find(c.method), options);
   SCOPED_TRACE(c.why);
+  if (kTimeFraction < 1.0) {
+    if (run.status != "completed") {
+      EXPECT_EQ(c.outcome, Outcome::fails) << run.failure_reason;
+      EXPECT_NE(run.failure_reason.find(c.reason), std::string::npos) << run.failure_reason;
+    }
+    return;
+  }
   if (c.outcome == Outcome::fails) {
     ASSERT_EQ(run.status, "failed") << "it now completes: update the record";
     EXPECT_NE(run.failure_reason.find(c.reason), std::string::npos) << run.failure_reason;
@@ -176,14 +202,14 @@ const std::vector<SmokeCase> kCases = {
      "p/c_u +24.7 % at a/a0 1.2, rising past the closed form's plateau (7.13 at a/a0 1.36), "
      "until a particle crosses the cavity's wall at a/a0 1.36: the velocity gradient of the "
      "particles within a smoothing length of the axis (sph/README.md, Axisymmetric)"},
-    {"footing-circular", "espfem", 0.2, Outcome::outside, 1.3, "",
-     "q/c_u against Eason & Shield's 6.05 from w/B 0.02 to 0.05: worst +126 % (tolerance 5 %), "
-     "mean 8.27 (+37 %); five nodes under the footing's radius and the contact force rings from "
-     "5.4 to 13.7. At dp 0.1 the mean is 6.82 (+12.7 %), worst +34.5 % (RESULTS.md)"},
-    {"cavity-spherical", "espfem", 0.5, Outcome::outside, 0.55, "",
-     "p/c_u +46 %, +28 %, +15 % at a/a0 1.2, 1.5, 2 against Hill's closed form (tolerance 10 %): "
-     "at dp 0.35 +21 %, +12.5 %; the mean stress alternates from ring to ring as in the "
-     "cylindrical cavity, and the soil by the axis carries more of it (RESULTS.md)"},
+    {"footing-circular", "espfem", 0.2, Outcome::outside, 0.9, "",
+     "q/c_u against Eason & Shield's 6.05 from w/B 0.02 to 0.05: worst +81 % (tolerance 5 %), "
+     "mean 6.64 (+9.7 %), median 6.32; five nodes under the footing's radius and the contact force "
+     "rings from 4.9 to 11.0. At dp 0.1 the mean is 6.42 (+6.2 %), worst +13.9 % (RESULTS.md)"},
+    {"cavity-spherical", "espfem", 0.5, Outcome::outside, 0.40, "",
+     "p/c_u +37.9 %, +24.1 %, +15.8 % at a/a0 1.2, 1.5, 2 against Hill's closed form (tolerance "
+     "10 %): at dp 0.35 +23.8 %, +13.7 %, +11.4 %; the mean stress alternates from ring to ring as "
+     "in the cylindrical cavity (RESULTS.md)"},
 };
 
 INSTANTIATE_TEST_SUITE_P(EveryScene, SmokeBenchmark, testing::ValuesIn(kCases),

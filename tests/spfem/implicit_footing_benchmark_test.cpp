@@ -141,14 +141,16 @@ TEST(ImplicitFootingBenchmark, ASmoothFootingPushedDownKeepsItsNodesAndItsLoad) 
 
 /// footing-deep.toml (B = 1 m, to w/B 1; load in q / s_u) through ispfem at dp 0.25 and to
 /// t = `end` s, with spfem.implicit.snap = `snap` and increment_stabilisation = `stabilisation`.
-IspfemRun deep_footing(const std::string& snap, double end, double stabilisation) {
+IspfemRun deep_footing(const std::string& snap, double end, double stabilisation,
+                       double load_drop = 0.0) {
   const Scene scene =
       load_scene(std::string(DUET_SOURCE_DIR) + "/benchmarks/scenes/footing-deep.toml",
                  {"spacing=0.25", "time.end_time=" + std::to_string(end),
                   "spfem.implicit.increment=0.05",  // the whole run's: 10 s / 200
                   "spfem.implicit.snap=" + snap,
-                  "spfem.implicit.increment_stabilisation=" + std::to_string(stabilisation)});
-  return run_ispfem(scene, "snap-" + snap);
+                  "spfem.implicit.increment_stabilisation=" + std::to_string(stabilisation),
+                  "spfem.implicit.load_drop=" + std::to_string(load_drop)});
+  return run_ispfem(scene, "snap-" + snap + "-" + std::to_string(load_drop));
 }
 
 /// q / s_u at the recorded settlement nearest `w`.
@@ -176,7 +178,8 @@ TEST(ImplicitFootingBenchmark, ASnapThroughIsCountedAndWarnedOfOrRefused) {
   // increment that moved the footing a fraction of a millimetre turned a triangle inside out,
   // area ratio -1.32). Warned of by default; with snap = "refuse" the increment is cut instead,
   // and the smaller increments pass that point without a snap. (Without the scene's increment
-  // stabilisation, which avoids this snap.)
+  // stabilisation, which avoids this snap, and without the load-drop cuts, which change the path
+  // before it: the next test.)
   const Json warned = deep_footing("warn", 6.0, 0.0).metrics;
   const Json& w = *warned.find("diagnostics")->find("newton");
   EXPECT_EQ(warned.find("status")->string(), "completed");
@@ -191,6 +194,28 @@ TEST(ImplicitFootingBenchmark, ASnapThroughIsCountedAndWarnedOfOrRefused) {
   EXPECT_EQ(r.find("snaps")->number(), 0.0);
   EXPECT_GT(r.find("cuts")->number(), w.find("cuts")->number());
   EXPECT_EQ(refused.find("warnings")->dump().find("snap-through"), std::string::npos);
+}
+
+TEST(ImplicitFootingBenchmark, ALoadDropIsRefusedAndCutThenKeptAtTheSmallestIncrement) {
+  // Perfectly plastic clay: the footing's load does not fall, so a converged increment that
+  // lets it fall more than load_drop below its peak is refused and cut; a drop that every cut
+  // still shows is kept at the smallest increment (nominal / 2^max_step_cuts) and counted.
+  // Measured at dp 0.25 to t = 6 s: 57 refusals, 9 drops kept (the first at t = 2.05 s, a
+  // snap within 0.0002 s of the footing's motion), no triangle turned inside out; without the
+  // cuts the load fell 94 % at t = 5.4 s through a snap.
+  const Json cut = deep_footing("warn", 6.0, 0.0, 0.05).metrics;
+  const Json off = deep_footing("warn", 6.0, 0.0, 0.0).metrics;
+  const Json& c = *cut.find("diagnostics")->find("newton");
+  const Json& o = *off.find("diagnostics")->find("newton");
+  ASSERT_EQ(cut.find("status")->string(), "completed");
+  EXPECT_EQ(c.find("load_drop")->number(), 0.05);  // said in metrics.json
+  EXPECT_GT(c.find("load_drop_cuts")->number(), 0.0);
+  EXPECT_GT(c.find("load_drops_accepted")->number(), 0.0);
+  // kept only when no cut is left: the smallest increment is the floor 0.05 s / 2^8
+  EXPECT_LE(c.find("increment_min")->number(), 0.05 / 256.0 * (1.0 + 1e-9));
+  EXPECT_GT(c.find("cuts")->number(), o.find("cuts")->number());
+  EXPECT_EQ(o.find("load_drop_cuts")->number(), 0.0);
+  EXPECT_EQ(o.find("load_drops_accepted")->number(), 0.0);
 }
 
 TEST(ImplicitFootingBenchmark, IncrementStabilisationKeepsTheDeepFootingsLoadRising) {
