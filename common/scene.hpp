@@ -327,8 +327,8 @@ struct SpfemImplicitOptions {
   // this fraction below its peak, in a scene whose materials cannot soften and whose strength is
   // not reduced, is refused and cut (a snap of nodal integration's soft modes, not the soil's
   // response); accepted and counted when the cuts run out, the peak then starting again from it;
-  // 0 = accept every converged increment
-  double load_drop = 0.05;
+  // 0 (the default) = accept every converged increment
+  double load_drop = 0.0;
   // The stiffness stabilisation's energy anchored to each increment's start, with 2 G as its
   // modulus (spfem/increment_operator.hpp); 0 = off
   double increment_stabilisation = 0.0;

@@ -234,7 +234,7 @@ std::vector<SceneKey> make_keys() {
        "an increment leaving a triangle below this fraction of its area (or inside out) snaps"},
       {"spfem.implicit", "increment_stabilisation", "number", "-", "0.0",
        "stiffness stabilisation anchored to each increment's start, modulus 2 G (0: off)"},
-      {"spfem.implicit", "load_drop", "number", "-", "0.05",
+      {"spfem.implicit", "load_drop", "number", "-", "0.0",
        "cut a quasi-static increment whose driven load falls this fraction below its peak, where "
        "no material softens (0: off)"},
       {"spfem.implicit", "snap", "string", "-", "\"warn\"",
