@@ -536,8 +536,8 @@ void ImplicitSolver::commit(Particles& particles, const IncrementOperator& op,
   boundary_force_ = std::move(force);
   for (std::size_t b = 0; b < boundary_force_.size(); ++b) {
     const double load = driven_load(b, boundary_force_[b], t1);
-    // Not driven now: the next drive starts a new peak (a reversed drive unloads)
-    load_peak_[b] = std::isnan(load) ? 0.0 : std::max(load_peak_[b], load);
+    // Not driven now (or gravity loading): the next drive starts a new peak
+    load_peak_[b] = std::isnan(load) || settling_ ? 0.0 : std::max(load_peak_[b], load);
   }
   const std::size_t width = particles.internal.width;
   for (std::size_t i = 0; i < n; ++i) {
