@@ -736,8 +736,13 @@ void ImplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
   sized("solver.acceleration", 2 * nodes);
   sized("solver.boundary_force", 2 * boundary_force_.size());
   sized("solver.scalars", 4);
-  sized("solver.counters", 17);
-  sized("solver.load_peak", load_peak_.size());
+  // A frame written before spfem.implicit.load_drop has 15 counters and no peaks: it resumes
+  // with both at zero
+  const bool before_load_drop = entry(state, "solver.counters").size() == 15;
+  if (!before_load_drop) {
+    sized("solver.counters", 17);
+    sized("solver.load_peak", load_peak_.size());
+  }
   get_integers(state, "solver.released", released_);
   get_bits(state, "solver.rigid_contact", held_by_);
   get(state, "solver.previous_u", previous_u_);
@@ -765,9 +770,13 @@ void ImplicitSolver::restore_state(const StateBag& state, std::size_t nodes) {
   c.snaps = static_cast<long>(k[12]);
   c.snap_first_time = k[13];
   c.snap_worst_ratio = k[14];
-  c.load_drop_cuts = static_cast<long>(k[15]);
-  c.load_drops_accepted = static_cast<long>(k[16]);
-  get(state, "solver.load_peak", load_peak_);
+  if (before_load_drop) {
+    std::fill(load_peak_.begin(), load_peak_.end(), 0.0);
+  } else {
+    c.load_drop_cuts = static_cast<long>(k[15]);
+    c.load_drops_accepted = static_cast<long>(k[16]);
+    get(state, "solver.load_peak", load_peak_);
+  }
   get_lists(state, "solver.residual_history", c.residual_history);
   discretisation_.restore_state(state, "solver.mesh_counters", nodes);
 }
