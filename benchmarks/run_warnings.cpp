@@ -189,6 +189,39 @@ void add_load_drop_warnings(const Scene& scene, const std::vector<BoundaryLoad>&
   }
 }
 
+/// A driven boundary that carried nothing until it had travelled more than a quarter spacing: it
+/// started off the material (a gap a lattice misfit leaves under a footing drawn on the body's
+/// edge), and the measures read 0 until then.
+void add_late_contact_warnings(const Scene& scene, const std::vector<BoundaryLoad>& loads,
+                               std::vector<std::string>& out) {
+  for (const BoundaryLoad& b : loads) {
+    std::size_t first = 0;
+    while (first < b.load.size() && b.load[first] == 0.0) ++first;
+    if (first == 0 || first == b.load.size()) continue;  // at once, or never (said elsewhere)
+    const double t = b.time[first];
+    Vec2 travel = Vec2::Zero();
+    std::string key;
+    for (const Wall& w : scene.walls) {
+      if (w.name != b.name) continue;
+      travel = schedule_integral(w.radial ? w.radial_velocity : w.velocity, t);
+      key = "wall." + w.name;
+    }
+    for (const RigidBody& rb : scene.rigid_bodies) {
+      if (rb.name != b.name) continue;
+      travel = schedule_integral(rb.velocity, t);
+      key = "rigid_body." + rb.name;
+    }
+    if (travel.norm() <= 0.25 * scene.spacing) continue;
+    char text[480];
+    std::snprintf(text, sizeof text,
+                  "%s carried no force until t = %.4g s, after it had moved %.3g m: it started "
+                  "off the material, and the measures read 0 until then (a body whose lattice "
+                  "ends short of its drawn edge leaves such a gap: see the lattice warning)",
+                  key.c_str(), t, travel.norm());
+    out.emplace_back(text);
+  }
+}
+
 /// The velocity of a wall or rigid body's schedule at t, and whether it is radial.
 struct BoundaryMotion {
   Vec2 velocity = Vec2::Zero();
@@ -325,6 +358,7 @@ std::vector<std::string> run_warnings(const Scene& scene, bool inertial,
     out.emplace_back(text);
   }
   add_untouched_boundary_warnings(scene, largest_reaction, out);
+  add_late_contact_warnings(scene, loads, out);
   // A quasi-static run's reactions are equilibrium loads. An explicit run's sampled reaction rings
   // about its trend by more than 5 % in a run that is right (footing.toml through espfem at dp
   // 0.25, 0.1 % off Prandtl: 17 kN/m at the footing's first step, 0.05 kN/m 0.02 s later; 58.3

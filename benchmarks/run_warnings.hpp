@@ -59,7 +59,9 @@ bool cannot_soften(const Scene& scene);
 /// - a moving boundary that never touched: a rigid body or wall with a prescribed motion whose
 ///   reaction was zero at every step (`largest_reaction`: the largest |F| of each named reaction
 ///   over the run); its measures read 0 and the run scored nothing (a footing that starts above
-///   the soil's top row: common/lattice.hpp lattice_misfits).
+///   the soil's top row: common/lattice.hpp lattice_misfits);
+/// - a moving boundary that touched late: its load stayed 0 until it had moved more than a quarter
+///   spacing (`loads`), so the measures before then read 0.
 /// From the method's diagnostics (the keys named), when it reports them:
 /// - penetrations (penetrations_max > 0): particles inside a wall or rigid body;
 /// - isolated nodes (isolated_nodes_max > 5 % of the particles): nodes in no triangle of the

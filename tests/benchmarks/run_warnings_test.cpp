@@ -231,14 +231,14 @@ TEST(RunWarnings, NoLoadDropWhereAMaterialCanSoftenOrTheStrengthIsReduced) {
 
 TEST(RunWarnings, AFootingStartingAboveTheSoilIsWarnedOfByTheRun) {
   // footing.toml's footing lifted 0.3 m off the soil and pushed 0.1 m: ispfem completes with a
-  // bearing of 0 and says why.
+  // bearing of 0 and says why; lifted less, it says when it first touched.
   const std::string out = (std::filesystem::temp_directory_path() /
                            ("duet-warn-untouched-" + std::to_string(::getpid())))
                               .string();
-  const auto run_footing = [&](const std::string& sets) {
+  const auto run_footing = [&](const std::string& sets, const std::string& method = "ispfem") {
     return test::run_duet("run '" + std::string(DUET_SOURCE_DIR) +
-                          "/benchmarks/scenes/footing.toml' --method ispfem --spacing 0.25 " +
-                          sets + " --quiet --no-plots --out '" + out + "'");
+                          "/benchmarks/scenes/footing.toml' --method " + method +
+                          " --spacing 0.25 " + sets + " --quiet --no-plots --out '" + out + "'");
   };
   const test::DuetResult r = run_footing(
       "--set time.end_time=2 --set 'rigid_body.footing.vertices=[[0.0, 5.3], [1.0, 5.3], [1.0, "
@@ -249,6 +249,16 @@ TEST(RunWarnings, AFootingStartingAboveTheSoilIsWarnedOfByTheRun) {
       << r.output;
   EXPECT_NE(test::read_text(out + "/metrics.json").find("rigid_body.footing moved but carried"),
             std::string::npos);
+  // Lifted 0.1 m and pushed 0.2 m it touches halfway (espfem: at the nodes' contact distance,
+  // dp / 2): the measures read 0 until then.
+  const test::DuetResult late = run_footing(
+      "--set time.end_time=4 --set 'rigid_body.footing.vertices=[[0.0, 5.1], [1.0, 5.1], [1.0, "
+      "5.4], [0.0, 5.4]]'",
+      "espfem");
+  EXPECT_EQ(late.status, 0) << late.output;
+  EXPECT_NE(late.output.find("duet: warning: rigid_body.footing carried no force until t ="),
+            std::string::npos)
+      << late.output;
   // The same footing on the soil carries its load and is not named.
   const test::DuetResult on = run_footing("--set time.end_time=0.2");
   EXPECT_EQ(on.status, 0) << on.output;
