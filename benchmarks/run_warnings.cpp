@@ -7,7 +7,6 @@
 
 #include "common/geometry.hpp"
 #include "common/units.hpp"
-#include "constitutive/registry.hpp"
 
 namespace duet {
 
@@ -287,12 +286,6 @@ LoadDrop largest_load_drop(const std::vector<double>& time, const std::vector<do
     if (fraction > worst.fraction) worst = {fraction, peak, peak_time, load[k], time[k]};
   }
   return worst;
-}
-
-bool cannot_soften(const Scene& scene) {
-  std::vector<std::string> models;
-  for (const Material& m : scene.materials) models.push_back(m.model);
-  return scene.strength_reduction.factor == 1.0 && constitutive::none_softens(models);
 }
 
 std::vector<std::string> run_warnings(const Scene& scene, bool inertial,

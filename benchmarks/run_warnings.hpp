@@ -10,6 +10,7 @@
 #include "common/kinetic_energy.hpp"
 #include "common/scene.hpp"
 #include "common/solver.hpp"
+#include "constitutive/scene_models.hpp"
 
 namespace duet {
 
@@ -42,10 +43,8 @@ struct LoadDrop {
 };
 LoadDrop largest_load_drop(const std::vector<double>& time, const std::vector<double>& load);
 
-/// No material can soften and the strength stays as given: every material's model says it cannot
-/// (constitutive::ModelInfo::softens false: elasticity and perfect plasticity) and no strength
-/// reduction runs.
-bool cannot_soften(const Scene& scene);
+/// No material can soften and the strength stays as given (constitutive/scene_models.hpp).
+using constitutive::cannot_soften;
 
 /// - a deposit not at rest: a dynamic method, gravity, nothing driven at the end (every wall and
 ///   rigid body still, no load), kinetic energy at the end above 1e-3 of its peak and 1e-4 of the

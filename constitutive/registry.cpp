@@ -51,13 +51,6 @@ const ModelRegistry& builtin_models() {
   return registry;
 }
 
-bool none_softens(const std::vector<std::string>& model_names) {
-  for (const std::string& name : model_names) {
-    if (builtin_models().find(name).softens) return false;
-  }
-  return true;
-}
-
 std::unique_ptr<Model> make_model(const std::string& name,
                                   std::map<std::string, ParameterValue> values,
                                   const std::string& context,

@@ -49,10 +49,6 @@ void register_builtin_models(ModelRegistry& registry);
 /// The registry with every built-in model.
 const ModelRegistry& builtin_models();
 
-/// True when none of the built-in models named can soften (ModelInfo::softens): a driven load
-/// on a body of them does not fall while their strength stays as given.
-bool none_softens(const std::vector<std::string>& model_names);
-
 /// A legal value that is almost surely in the wrong unit.
 struct UnitDoubt {
   std::string message;   // "material.sand.E = 20: ...": the key, the value, what was likely meant

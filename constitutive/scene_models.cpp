@@ -8,6 +8,14 @@
 
 namespace duet::constitutive {
 
+bool cannot_soften(const Scene& scene) {
+  if (scene.strength_reduction.factor != 1.0) return false;
+  for (const Material& m : scene.materials) {
+    if (builtin_models().find(m.model).softens) return false;
+  }
+  return true;
+}
+
 Models make_scene_models(const Scene& scene, double factor) {
   Models models;
   for (const Material& m : scene.materials) {

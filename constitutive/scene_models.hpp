@@ -17,6 +17,11 @@ using Models = std::vector<std::unique_ptr<Model>>;
 /// (Peng 2015 eqs 39-40); at the scene's factor, the models of `scene.materials` as loaded.
 Models make_scene_models(const Scene& scene, double factor);
 
+/// No material can soften and the strength stays as given: every material's model says it cannot
+/// (ModelInfo::softens false: elasticity and perfect plasticity) and no strength reduction runs,
+/// so a driven load does not fall (the run's load-drop warning, ispfem's spfem.implicit.load_drop).
+bool cannot_soften(const Scene& scene);
+
 /// Replaces `models` by `replacement`, which must have as many models with as many internal
 /// variables each (a strength reduced during the run); `solver` names the caller in the error.
 void replace_models(Models& models, Models replacement, const char* solver);

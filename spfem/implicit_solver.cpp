@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -300,23 +301,22 @@ std::string ImplicitSolver::load_drop(const std::vector<Vec2>& force, double t1,
   // through a snap (benchmarks/run_warnings.hpp warns of the same in the output). Dynamics and
   // gravity loading are left alone.
   if (!(o.load_drop > 0.0) || !setup_.monotonic || o.newmark || settling_) return "";
-  std::vector<std::size_t> dropped;
+  std::vector<std::pair<std::size_t, double>> dropped;  // boundary, its load at t1
   for (std::size_t b = 0; b < force.size(); ++b) {
     const double load = driven_load(b, force[b], t1);
     if (std::isnan(load) || !(load_peak_[b] > 0.0)) continue;
-    if (load < (1.0 - o.load_drop) * load_peak_[b]) dropped.push_back(b);
+    if (load < (1.0 - o.load_drop) * load_peak_[b]) dropped.emplace_back(b, load);
   }
   if (dropped.empty()) return "";
   if (!may_cut) {  // kept: the path goes on from the lower load
-    for (const std::size_t b : dropped) load_peak_[b] = driven_load(b, force[b], t1);
+    for (const auto& [b, load] : dropped) load_peak_[b] = load;
     counters_.load_drops_accepted += long(dropped.size());
     return "";
   }
-  const std::size_t b = dropped.front();
+  const auto [b, load] = dropped.front();
   std::ostringstream why;
-  why << "the load on " << setup_.boundaries[b].name << " fell to " << driven_load(b, force[b], t1)
-      << " from its peak " << load_peak_[b]
-      << ", more than spfem.implicit.load_drop = " << o.load_drop
+  why << "the load on " << setup_.boundaries[b].name << " fell to " << load << " from its peak "
+      << load_peak_[b] << ", more than spfem.implicit.load_drop = " << o.load_drop
       << " below it, though no material can soften";
   return why.str();
 }

@@ -9,7 +9,6 @@
 #include "common/scene_loads.hpp"
 #include "common/standing_faces.hpp"
 #include "common/strength_reduction.hpp"
-#include "constitutive/registry.hpp"
 #include "constitutive/scene_models.hpp"
 #include "spfem/explicit_solver.hpp"
 #include "spfem/implicit_solver.hpp"
@@ -90,9 +89,7 @@ IspfemSetup make_implicit_setup(const Scene& scene) {
   }
   IspfemSetup setup = make_setup<IspfemSetup>(scene);
   setup.implicit = scene.spfem_implicit;
-  std::vector<std::string> models;
-  for (const Material& m : scene.materials) models.push_back(m.model);
-  setup.monotonic = scene.strength_reduction.factor == 1.0 && constitutive::none_softens(models);
+  setup.monotonic = constitutive::cannot_soften(scene);
   return setup;
 }
 

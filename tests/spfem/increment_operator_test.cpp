@@ -13,9 +13,12 @@
 #include <random>
 
 #include "constitutive/registry.hpp"
+#include "tests/spfem/straight_wall.hpp"
 
 namespace duet::spfem {
 namespace {
+
+using testing::straight_wall;
 
 constexpr double kSpacing = 1.0;  // m
 constexpr int kNx = 6;
@@ -194,15 +197,6 @@ TEST(IncrementOperator, IncrementStabilisationResistsOnlyTheIncrementsHourglassP
   EXPECT_GT(largest, 1e-3);
 }
 
-/// A straight wall from a to b with `condition`.
-NodeBoundary wall_along(const char* name, const Vec2& a, const Vec2& b, NodeCondition condition) {
-  NodeBoundary wall;
-  wall.name = name;
-  wall.polyline = {a, b};
-  wall.condition = condition;
-  return wall;
-}
-
 /// The cloud's first column and row onto the lattice, dp / 2 from walls along x = 0 and y = 0.
 void against_walls(Case& c) {
   for (std::size_t i = 0; i < c.start.size(); ++i) {
@@ -216,10 +210,10 @@ TEST(IncrementOperator, TangentWithWallStripsMatchesFiniteDifferenceJacobian) {
   // row lie within reach of them): their wall strips enter the rows of the nodes at the walls
   Case c = elastic_case();
   against_walls(c);
-  const double error =
-      tangent_error(c, true, 0.0,
-                    {wall_along("clamp", Vec2(0.0, -1.0), Vec2(0.0, 6.0), NodeCondition::bonded),
-                     wall_along("floor", Vec2(-1.0, 0.0), Vec2(7.0, 0.0), NodeCondition::smooth)});
+  const double error = tangent_error(
+      c, true, 0.0,
+      {straight_wall("clamp", Vec2(0.0, -1.0), Vec2(0.0, 6.0), NodeCondition::bonded),
+       straight_wall("floor", Vec2(-1.0, 0.0), Vec2(7.0, 0.0), NodeCondition::smooth)});
   std::printf("elastic, layer, wall strips: %.2e\n", error);
   EXPECT_LT(error, 1e-6);
 }
@@ -323,11 +317,11 @@ TEST(IncrementOperator, AxisymmetricTangentOnTheAxisWallMatchesFiniteDifferenceJ
   against_walls(c);
   c.u = displacement(c.start, (Mat2() << 0.01, 0.03, -0.02, 0.005).finished(), 2e-3, 11);
   // Act
-  const double error =
-      tangent_error(c, true, 0.0,
-                    {wall_along("axis", Vec2(0.0, -1.0), Vec2(0.0, 6.0), NodeCondition::symmetry),
-                     wall_along("base", Vec2(-1.0, 0.0), Vec2(7.0, 0.0), NodeCondition::bonded)},
-                    0.0, true);
+  const double error = tangent_error(
+      c, true, 0.0,
+      {straight_wall("axis", Vec2(0.0, -1.0), Vec2(0.0, 6.0), NodeCondition::symmetry),
+       straight_wall("base", Vec2(-1.0, 0.0), Vec2(7.0, 0.0), NodeCondition::bonded)},
+      0.0, true);
   // Assert
   std::printf("axisymmetric elastic, layer, axis and base wall strips: %.2e\n", error);
   EXPECT_LT(error, 1e-6);

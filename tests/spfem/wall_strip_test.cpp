@@ -15,12 +15,14 @@
 
 #include "spfem/smoothing.hpp"
 #include "tests/spfem/delaunay_mesh.hpp"
+#include "tests/spfem/straight_wall.hpp"
 
 namespace duet::spfem {
 namespace {
 
 using testing::delaunay_mesh;
 using testing::Lattice;
+using testing::straight_wall;
 
 // Jittered by up to 0.2 dp; the first row and column bowed towards their walls instead (convex,
 // so every edge of theirs stays on the surface): between 0.3 dp (middle) and 0.5 dp (ends) off
@@ -45,20 +47,13 @@ std::vector<Vec2> jittered(const Lattice& lattice, unsigned seed) {
   return x;
 }
 
-NodeBoundary wall(const char* name, const Vec2& a, const Vec2& b, NodeCondition condition) {
-  NodeBoundary w;
-  w.name = name;
-  w.polyline = {a, b};
-  w.condition = condition;
-  return w;
-}
-
 // A no-slip floor and left wall around the lattice (reaching past its corners).
 std::vector<NodeBoundary> floor_and_left_wall(const Lattice& lattice,
                                               NodeCondition left = NodeCondition::bonded) {
-  return {wall("floor", Vec2(-lattice.dp, 0.0), Vec2(lattice.width() + lattice.dp, 0.0),
-               NodeCondition::bonded),
-          wall("left", Vec2(0.0, -lattice.dp), Vec2(0.0, lattice.height() + lattice.dp), left)};
+  return {straight_wall("floor", Vec2(-lattice.dp, 0.0), Vec2(lattice.width() + lattice.dp, 0.0),
+                        NodeCondition::bonded),
+          straight_wall("left", Vec2(0.0, -lattice.dp), Vec2(0.0, lattice.height() + lattice.dp),
+                        left)};
 }
 
 WallStrips strips_of(const AlphaMesh& mesh, const std::vector<Vec2>& x,
@@ -114,10 +109,10 @@ TEST(WallStrip, AUniformlyStressedConfinedSampleIsInEquilibrium) {
   const double h = lattice.height();
   const double d = lattice.dp;
   const std::vector<NodeBoundary> walls = {
-      wall("floor", Vec2(-d, 0.0), Vec2(w + d, 0.0), NodeCondition::bonded),
-      wall("top", Vec2(w + d, h), Vec2(-d, h), NodeCondition::bonded),
-      wall("left", Vec2(0.0, h + d), Vec2(0.0, -d), NodeCondition::smooth),
-      wall("right", Vec2(w, -d), Vec2(w, h + d), NodeCondition::smooth)};
+      straight_wall("floor", Vec2(-d, 0.0), Vec2(w + d, 0.0), NodeCondition::bonded),
+      straight_wall("top", Vec2(w + d, h), Vec2(-d, h), NodeCondition::bonded),
+      straight_wall("left", Vec2(0.0, h + d), Vec2(0.0, -d), NodeCondition::smooth),
+      straight_wall("right", Vec2(w, -d), Vec2(w, h + d), NodeCondition::smooth)};
   const WallStrips strips = strips_of(mesh, x, walls, d);
   SmoothingCells cells;
   build_smoothing_cells(mesh, x, cells, 0.5 * d, &strips);
@@ -299,9 +294,9 @@ TEST(WallStrip, AStripHoldsItsNodesInTensionAndLetsGoBeyondTwoSpacings) {
   const Lattice lattice;
   std::vector<Vec2> x = lattice.points();
   const AlphaMesh mesh = delaunay_mesh(x);
-  const std::vector<NodeBoundary> floor = {wall("floor", Vec2(-lattice.dp, 0.0),
-                                                Vec2(lattice.width() + lattice.dp, 0.0),
-                                                NodeCondition::bonded)};
+  const std::vector<NodeBoundary> floor = {straight_wall("floor", Vec2(-lattice.dp, 0.0),
+                                                         Vec2(lattice.width() + lattice.dp, 0.0),
+                                                         NodeCondition::bonded)};
   std::vector<BoundaryGeometry> geometry = {orient_boundary(floor[0], x, 2.0 * lattice.dp)};
   WallStrips strips;
   find_wall_strips(mesh, x, floor, geometry, lattice.dp, 0.5 * lattice.dp, strips);
